@@ -1,0 +1,112 @@
+#include "bake/Baker.h"
+
+#include <fmt/format.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "bake/DirectionSet.h"
+#include "bake/ProbeTracer.h"
+#include "bake/ProjectionOperator.h"
+#include "common/Error.h"
+
+namespace baker {
+namespace {
+
+// Consecutive colour channels that share one function set are projected together: for an
+// RGB basis that is one product over all three channels of a brick.
+struct ChannelGroup {
+  int firstChannel = 0;
+  int channelCount = 0;
+  Eigen::MatrixXf projection;  // functions × directions
+};
+
+std::vector<ChannelGroup> groupChannels(const Basis& basis, const DirectionSet& directions, double* worstCondition) {
+  std::vector<ChannelGroup> groups;
+  for (int c = 0; c < 3; ++c) {
+    if (c > 0 && &basis.functions(c) == &basis.functions(c - 1)) {
+      ++groups.back().channelCount;
+      continue;
+    }
+    ProjectionOperator op = leastSquaresProjection(basis.functions(c), directions, basis.name());
+    *worstCondition = std::max(*worstCondition, op.conditionNumber);
+    groups.push_back({c, 1, op.matrix.cast<float>()});
+  }
+  return groups;
+}
+
+}  // namespace
+
+Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basis, const ProbeGrid& grid, int rays,
+                  BakeStats* stats) {
+  if (rays <= 0) throw InputError(fmt::format("--rays must be positive, got {}", rays));
+  const DirectionSet directions = sphericalFibonacci(rays);
+  double condition = 0.0;
+  const std::vector<ChannelGroup> groups = groupChannels(basis, directions, &condition);
+  std::vector<Eigen::Vector3f> rayDirections;
+  for (const Eigen::Vector3d& d : directions.directions) rayDirections.push_back(d.cast<float>());
+  const ProbeTracer probeTracer(scene, tracer, rayDirections);
+
+  Volume volume;
+  volume.grid = grid;
+  volume.basisName = basis.name();
+  volume.coefficientsPerProbe = basis.totalCoefficients();
+  volume.coefficients.assign(std::size_t(grid.probeCount()) * volume.coefficientsPerProbe, 0.0f);
+
+  const Eigen::Vector3i bricks = (grid.dims.array() + kBrickSize - 1) / kBrickSize;
+  const int brickCount = bricks.x() * bricks.y() * bricks.z();
+  const ColorSpace space = basis.colorSpace();
+
+  tbb::parallel_for(tbb::blocked_range<int>(0, brickCount, 1), [&](const tbb::blocked_range<int>& range) {
+    std::vector<Eigen::Vector3f> radiance(rays);
+    for (int b = range.begin(); b < range.end(); ++b) {
+      const Eigen::Vector3i brick(b % bricks.x(), (b / bricks.x()) % bricks.y(), b / (bricks.x() * bricks.y()));
+      const Eigen::Vector3i lo = brick * kBrickSize;
+      const Eigen::Vector3i hi = (lo.array() + kBrickSize).min(grid.dims.array());
+      std::vector<std::int64_t> probes;
+      for (int k = lo.z(); k < hi.z(); ++k)
+        for (int j = lo.y(); j < hi.y(); ++j)
+          for (int i = lo.x(); i < hi.x(); ++i) probes.push_back(grid.linearIndex(i, j, k));
+      const int p = int(probes.size());
+
+      // Samples of the brick, one column per (channel, probe): channel-major blocks so that a
+      // channel group is a contiguous run of columns.
+      Eigen::MatrixXf samples(rays, 3 * p);
+      int column = 0;
+      for (int k = lo.z(); k < hi.z(); ++k)
+        for (int j = lo.y(); j < hi.y(); ++j)
+          for (int i = lo.x(); i < hi.x(); ++i, ++column) {
+            probeTracer.trace(grid.position(i, j, k).cast<float>(), radiance.data());
+            for (int r = 0; r < rays; ++r) {
+              const Eigen::Vector3f value = toColorSpace(space, radiance[r]);
+              for (int c = 0; c < 3; ++c) samples(r, c * p + column) = value[c];
+            }
+          }
+
+      for (const ChannelGroup& group : groups) {
+        const Eigen::MatrixXf coefficients =
+            group.projection * samples.middleCols(group.firstChannel * p, group.channelCount * p);
+        for (int c = 0; c < group.channelCount; ++c) {
+          const int offset = basis.coefficientOffset(group.firstChannel + c);
+          for (int q = 0; q < p; ++q) {
+            float* out = volume.coefficients.data() + probes[q] * volume.coefficientsPerProbe + offset;
+            for (int f = 0; f < coefficients.rows(); ++f) out[f] = coefficients(f, c * p + q);
+          }
+        }
+      }
+    }
+  });
+
+  if (stats) {
+    stats->probes = grid.probeCount();
+    stats->bricks = brickCount;
+    stats->raysPerProbe = rays;
+    stats->raysTraced = grid.probeCount() * rays;
+    stats->conditionNumber = condition;
+  }
+  return volume;
+}
+
+}  // namespace baker

@@ -1,0 +1,29 @@
+#pragma once
+#include <cstdint>
+
+#include "bake/Basis.h"
+#include "bake/ProbeGrid.h"
+#include "bake/Volume.h"
+#include "scene/RayTracer.h"
+#include "scene/Scene.h"
+
+namespace baker {
+
+// Probes are baked in bricks of kBrickSize³: the unit of parallel work and an OpenVDB leaf.
+constexpr int kBrickSize = 8;
+
+struct BakeStats {
+  std::int64_t probes = 0;
+  std::int64_t bricks = 0;
+  int raysPerProbe = 0;
+  std::int64_t raysTraced = 0;
+  double conditionNumber = 0.0;  // worst of the projection operators
+};
+
+// Traces `rays` spherical Fibonacci directions from every probe of `grid` and projects them
+// into `basis`: one matrix product per brick and channel group. The result does not depend
+// on the number of threads.
+Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basis, const ProbeGrid& grid, int rays,
+                  BakeStats* stats);
+
+}  // namespace baker

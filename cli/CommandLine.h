@@ -1,0 +1,13 @@
+#pragma once
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <string>
+
+namespace baker {
+
+// Runs one command's body and turns every failure into one line on stderr and an exit
+// code: 2 for bad input (a file, a field, a flag), 1 for anything else. `body` parses and runs.
+int runGuarded(const std::string& command, CLI::App& app, int argc, char** argv, const std::function<int()>& body);
+
+}  // namespace baker

@@ -1,0 +1,30 @@
+#pragma once
+#include <string>
+
+namespace baker {
+
+// Output that appears under its final name only when complete: writers fill temporaryPath()
+// and call commit(); if they throw first, the destructor removes the temporary file, so a
+// failed command never leaves a partial volume behind.
+class AtomicFile {
+ public:
+  // Throws InputError if the directory of `finalPath` does not exist.
+  explicit AtomicFile(std::string finalPath);
+  ~AtomicFile();
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+
+  const std::string& temporaryPath() const { return temporary_; }
+  void commit();
+
+ private:
+  std::string final_;
+  std::string temporary_;
+  bool committed_ = false;
+};
+
+// Throws InputError naming `path` if its directory does not exist; checked before baking so
+// that a typo costs nothing.
+void requireOutputDirectory(const std::string& path);
+
+}  // namespace baker

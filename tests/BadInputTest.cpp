@@ -1,0 +1,93 @@
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "tests/TestData.h"
+
+namespace baker {
+namespace {
+
+struct ProcessResult {
+  int exitCode = -1;
+  std::string stderrText;
+};
+
+// Runs the real baker binary, as a user would, in `dir`.
+ProcessResult runBaker(const std::string& dir, const std::string& args) {
+  const std::string errFile = dir + "/stderr.txt";
+  const std::string command = "cd '" + dir + "' && '" BAKER_BINARY "' " + args + " > /dev/null 2> '" + errFile + "'";
+  const int status = std::system(command.c_str());
+  ProcessResult run;
+  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream in(errFile);
+  std::stringstream text;
+  text << in.rdbuf();
+  run.stderrText = text.str();
+  std::filesystem::remove(errFile);
+  return run;
+}
+
+std::vector<std::string> filesIn(const std::string& dir) {
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(dir)) names.push_back(entry.path().string());
+  return names;
+}
+
+class BadInput : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = test::makeTempDir(::testing::UnitTest::GetInstance()->current_test_info()->name());
+    scene_ = test::sourcePath("data/default_room/default_room.gltf");
+  }
+  // One line on stderr that mentions `needle`, exit code 2, and nothing written.
+  void expectRejected(const std::string& args, const std::string& needle,
+                      const std::vector<std::string>& keep = {}) {
+    const ProcessResult run = runBaker(dir_, args);
+    EXPECT_EQ(run.exitCode, 2) << run.stderrText;
+    EXPECT_NE(run.stderrText.find(needle), std::string::npos) << run.stderrText;
+    EXPECT_EQ(std::count(run.stderrText.begin(), run.stderrText.end(), '\n'), 1) << run.stderrText;
+    EXPECT_EQ(filesIn(dir_), keep) << "no output may be left behind";
+  }
+  std::string dir_, scene_;
+};
+
+TEST_F(BadInput, MissingSceneFile) { expectRejected("no_such_scene.gltf --out out.vdb", "no_such_scene.gltf"); }
+
+TEST_F(BadInput, MalformedSceneFile) {
+  const std::string bad = dir_ + "/broken.gltf";
+  std::ofstream(bad) << "{ \"asset\": { \"version\": \"2.0\" }, \"meshes\": [ {";
+  expectRejected("broken.gltf --out out.vdb", "broken.gltf", {bad});
+}
+
+TEST_F(BadInput, SceneWithAnAccessorOutOfRange) {
+  const std::string bad = dir_ + "/short.gltf";
+  // 3 vertices need 36 bytes; the buffer (a data URI of 12 zero bytes) has 12.
+  std::ofstream(bad) << R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],
+    "meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+    "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"}],
+    "bufferViews":[{"buffer":0,"byteLength":12}],
+    "buffers":[{"byteLength":12,"uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAA"}]})";
+  expectRejected("short.gltf --out out.vdb", "meshes[0].primitives[0].attributes.POSITION", {bad});
+}
+
+TEST_F(BadInput, UnknownBasis) { expectRejected("'" + scene_ + "' --basis sh-l99 --out out.vdb", "sh-l99"); }
+
+TEST_F(BadInput, ZeroSpacing) { expectRejected("'" + scene_ + "' --spacing 0 --out out.vdb", "--spacing"); }
+
+TEST_F(BadInput, NegativeSpacing) { expectRejected("'" + scene_ + "' --spacing -0.5 --out out.vdb", "--spacing"); }
+
+TEST_F(BadInput, OutputInAMissingDirectory) {
+  expectRejected("'" + scene_ + "' --out no_such_dir/out.vdb", "no_such_dir");
+}
+
+TEST_F(BadInput, ValidBakeWritesExactlyTheVolume) {
+  const ProcessResult run = runBaker(dir_, "'" + scene_ + "' --spacing 1 --rays 32 --out out.vdb");
+  EXPECT_EQ(run.exitCode, 0) << run.stderrText;
+  EXPECT_EQ(filesIn(dir_), std::vector<std::string>{dir_ + "/out.vdb"});
+}
+
+}  // namespace
+}  // namespace baker

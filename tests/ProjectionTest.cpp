@@ -1,0 +1,60 @@
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "bake/DirectionSet.h"
+#include "bake/ProjectionOperator.h"
+#include "bake/SphericalHarmonics.h"
+#include "common/Error.h"
+
+namespace baker {
+namespace {
+
+TEST(Projection, ShL2OperatorReproducesAFunctionInItsSpan) {
+  const SphericalHarmonics sh(2);
+  const DirectionSet dirs = sphericalFibonacci(256);
+  const ProjectionOperator op = leastSquaresProjection(sh, dirs, "sh-l2");
+  ASSERT_EQ(op.matrix.rows(), 9);
+  ASSERT_EQ(op.matrix.cols(), 256);
+  EXPECT_LT(op.conditionNumber, 2.0);  // 256 Fibonacci points resolve nine harmonics almost perfectly
+
+  std::mt19937 rng(7);
+  std::normal_distribution<double> normal;
+  for (int trial = 0; trial < 5; ++trial) {
+    Eigen::VectorXd c(9);
+    for (int i = 0; i < 9; ++i) c[i] = normal(rng);
+    Eigen::VectorXd samples(256), y(9);
+    for (int k = 0; k < 256; ++k) {
+      sh.evaluate(dirs.directions[k], y.data());
+      samples[k] = y.dot(c);
+    }
+    EXPECT_LT((op.matrix * samples - c).cwiseAbs().maxCoeff(), 1e-12);
+  }
+}
+
+TEST(Projection, RefusesTooFewDirectionsWithAClearMessage) {
+  const SphericalHarmonics sh(8);
+  try {
+    leastSquaresProjection(sh, sphericalFibonacci(40), "sh-l8");
+    FAIL() << "81 functions from 40 directions must be refused";
+  } catch (const NumericalError& e) {
+    EXPECT_NE(std::string(e.what()).find("sh-l8"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("more rays"), std::string::npos) << e.what();
+  }
+}
+
+TEST(DirectionSet, FibonacciPointsAreUnitAndWeightsSumTo4Pi) {
+  const DirectionSet dirs = sphericalFibonacci(1000);
+  double total = 0.0;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (std::size_t k = 0; k < dirs.size(); ++k) {
+    EXPECT_NEAR(dirs.directions[k].norm(), 1.0, 1e-14);
+    total += dirs.weights[k];
+    mean += dirs.directions[k];
+  }
+  EXPECT_NEAR(total, 4 * M_PI, 1e-12);
+  EXPECT_LT(mean.norm() / 1000, 1e-3);  // evenly spread: no net direction
+}
+
+}  // namespace
+}  // namespace baker
