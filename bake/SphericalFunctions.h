@@ -1,5 +1,6 @@
 #pragma once
 #include <Eigen/Core>
+#include <vector>
 
 namespace baker {
 
@@ -11,6 +12,12 @@ class SphericalFunctions {
   virtual int count() const = 0;
   // Writes count() values for the unit vector `direction`.
   virtual void evaluate(const Eigen::Vector3d& direction, double* values) const = 0;
+
+  // Normals of the great circles (planes through the centre) across which some of the
+  // functions are not smooth, beyond the 15 mirror planes of the icosahedron (which contain
+  // its edges and the coordinate planes): exact quadratures split the sphere along them.
+  // E.g. clamped lobes max(0, v·d)^p kink on the plane v·d = 0.
+  virtual std::vector<Eigen::Vector3d> kinkPlanes() const { return {}; }
 };
 
 }  // namespace baker

@@ -7,13 +7,14 @@ namespace baker {
 
 SphericalHarmonics::SphericalHarmonics(int order) : order_(order) {
   if (order < 0 || order > kMaxOrder) throw std::invalid_argument("spherical harmonics order out of range");
+  normalisation_.resize((order + 1) * (order + 2) / 2);
   for (int l = 0; l <= order; ++l)
     for (int m = 0; m <= l; ++m) {
       // K(l,m) = sqrt((2l+1)/(4π) · (l−m)!/(l+m)!), the ratio of factorials built up stepwise.
       double ratio = 1.0;
       for (int k = l - m + 1; k <= l + m; ++k) ratio /= k;
       double k = std::sqrt((2 * l + 1) / (4.0 * M_PI) * ratio);
-      normalisation_[l][m] = m == 0 ? k : std::sqrt(2.0) * k;
+      normalisation_[l * (l + 1) / 2 + m] = m == 0 ? k : std::sqrt(2.0) * k;
     }
 }
 
@@ -37,7 +38,7 @@ void SphericalHarmonics::evaluate(const Eigen::Vector3d& d, double* values) cons
         previous = current;
         current = next;
       }
-      const double scaled = normalisation_[l][m] * current;
+      const double scaled = normalisation_[l * (l + 1) / 2 + m] * current;
       const int centre = l * l + l;
       if (m == 0) {
         values[centre] = scaled;

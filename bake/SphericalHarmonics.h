@@ -1,4 +1,6 @@
 #pragma once
+#include <vector>
+
 #include "bake/SphericalFunctions.h"
 
 namespace baker {
@@ -9,7 +11,9 @@ namespace baker {
 // Y(1,0) = c·z, Y(1,1) = c·x: the convention of the reference tools' panorama_sh.py.
 class SphericalHarmonics : public SphericalFunctions {
  public:
-  static constexpr int kMaxOrder = 16;
+  // High orders serve the radiance→irradiance operator, which sums bands until it converges;
+  // the factorial ratios in the normalisation stay within double range up to here.
+  static constexpr int kMaxOrder = 64;
   explicit SphericalHarmonics(int order);
   int order() const { return order_; }
   int count() const override { return (order_ + 1) * (order_ + 1); }
@@ -17,7 +21,7 @@ class SphericalHarmonics : public SphericalFunctions {
 
  private:
   int order_;
-  double normalisation_[kMaxOrder + 1][kMaxOrder + 1];  // √2·K(l,m) for m > 0, K(l,0) for m = 0
+  std::vector<double> normalisation_;  // [l·(l+1)/2 + m]: √2·K(l,m) for m > 0, K(l,0) for m = 0
 };
 
 }  // namespace baker

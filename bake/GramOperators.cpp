@@ -1,0 +1,120 @@
+#include "bake/GramOperators.h"
+
+#include <fmt/format.h>
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+
+#include "bake/SphereQuadrature.h"
+#include "bake/SphericalHarmonics.h"
+#include "common/Error.h"
+
+namespace baker {
+namespace {
+
+constexpr double kMaxConditionNumber = 1e12;
+
+// The samples of every function of `f` at the quadrature's directions, one row per direction.
+Eigen::MatrixXd sampleFunctions(const SphericalFunctions& f, const DirectionSet& q) {
+  Eigen::MatrixXd values(q.size(), f.count());
+  Eigen::VectorXd row(f.count());
+  for (std::size_t k = 0; k < q.size(); ++k) {
+    f.evaluate(q.directions[k], row.data());
+    values.row(k) = row.transpose();
+  }
+  return values;
+}
+
+Eigen::VectorXd weightsOf(const DirectionSet& q) { return Eigen::Map<const Eigen::VectorXd>(q.weights.data(), q.size()); }
+
+}  // namespace
+
+Eigen::MatrixXd innerProducts(const SphericalFunctions& f, const SphericalFunctions& g, int order) {
+  std::vector<Eigen::Vector3d> kinks = f.kinkPlanes();
+  for (const Eigen::Vector3d& n : g.kinkPlanes()) kinks.push_back(n);
+  const DirectionSet q = piecewiseSphereQuadrature(order, kinks);
+  const Eigen::MatrixXd fv = sampleFunctions(f, q);
+  if (&f == &g) return fv.transpose() * weightsOf(q).asDiagonal() * fv;
+  return fv.transpose() * weightsOf(q).asDiagonal() * sampleFunctions(g, q);
+}
+
+double clampedCosineBand(int l) {
+  if (l == 0) return M_PI;
+  if (l == 1) return 2.0 * M_PI / 3.0;
+  if (l % 2 == 1) return 0.0;
+  // l!/(2^l ((l/2)!)²) built as a product to stay in range.
+  double ratio = 1.0;
+  for (int k = 1; k <= l / 2; ++k) ratio *= double(l / 2 + k) / (4.0 * k);
+  const double sign = (l / 2 - 1) % 2 == 0 ? 1.0 : -1.0;
+  return 2.0 * M_PI * sign / ((l + 2.0) * (l - 1.0)) * ratio;
+}
+
+double BandWindow::factor(int l) const {
+  if (hannWidth <= 0) return 1.0;
+  if (l > hannWidth) return 0.0;
+  return 0.5 * (1.0 + std::cos(M_PI * l / (hannWidth + 1.0)));
+}
+
+Eigen::MatrixXd invertSymmetric(const Eigen::MatrixXd& matrix, const std::string& label, double* conditionNumber) {
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(matrix);
+  const double smallest = eigen.eigenvalues().minCoeff(), largest = eigen.eigenvalues().maxCoeff();
+  const double condition = smallest > 0.0 ? largest / smallest : std::numeric_limits<double>::infinity();
+  if (conditionNumber) *conditionNumber = condition;
+  if (!(condition <= kMaxConditionNumber))
+    throw NumericalError(fmt::format("{}: the Gram matrix is numerically singular (condition number {:.3g} > {:.0e})",
+                                     label, condition, kMaxConditionNumber));
+  return eigen.eigenvectors() * eigen.eigenvalues().cwiseInverse().asDiagonal() * eigen.eigenvectors().transpose();
+}
+
+GramOperators::GramOperators(const SphericalFunctions& functions, std::string label)
+    : functions_(functions), label_(std::move(label)) {
+  gram_ = innerProducts(functions, functions);
+  gram_ = 0.5 * (gram_ + gram_.transpose());  // exact symmetry, not rounding-level
+  inverse_ = invertSymmetric(gram_, label_, &condition_);
+}
+
+const Eigen::MatrixXd& GramOperators::shMoments(int order) const {
+  auto it = shMoments_.find(order);
+  if (it != shMoments_.end()) return it->second;
+  const SphericalHarmonics sh(order);
+  return shMoments_[order] = innerProducts(functions_, sh);
+}
+
+Eigen::MatrixXd GramOperators::fromSamples(const DirectionSet& samples) const {
+  return inverse_ * sampleFunctions(functions_, samples).transpose() * weightsOf(samples).asDiagonal();
+}
+
+Eigen::MatrixXd GramOperators::radianceToIrradiance(const BandWindow& window, int* orderUsed) const {
+  Eigen::MatrixXd previous;
+  for (int order = 8;; order += 8) {
+    const Eigen::MatrixXd& b = shMoments(order);
+    Eigen::VectorXd c(b.cols());
+    for (int l = 0; l <= order; ++l)
+      for (int m = -l; m <= l; ++m) c[l * l + l + m] = clampedCosineBand(l) * window.factor(l);
+    Eigen::MatrixXd op = inverse_ * b * c.asDiagonal() * b.transpose();
+    if (previous.size() && (op - previous).cwiseAbs().maxCoeff() <= 1e-6 * op.cwiseAbs().maxCoeff()) {
+      if (orderUsed) *orderUsed = order;
+      return op;
+    }
+    if (order + 8 > SphericalHarmonics::kMaxOrder)
+      throw NumericalError(fmt::format("{}: the irradiance operator has not converged at SH order {}", label_, order));
+    previous = std::move(op);
+  }
+}
+
+ShReproduction GramOperators::shReproduction(int maxOrder) const {
+  const Eigen::MatrixXd& b = shMoments(maxOrder);
+  const Eigen::MatrixXd p = b.transpose() * inverse_ * b;
+  ShReproduction r;
+  double sum = 0.0;
+  for (int l = 0; l <= maxOrder; ++l) {
+    const int n = (l + 1) * (l + 1);
+    const double norm = (Eigen::MatrixXd::Identity(n, n) - p.topLeftCorner(n, n)).norm();
+    sum += norm * norm;
+    r.cumulative.push_back(norm);
+    r.runningSum.push_back(std::sqrt(sum));
+  }
+  return r;
+}
+
+}  // namespace baker

@@ -1,0 +1,76 @@
+#pragma once
+#include <Eigen/Core>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "bake/DirectionSet.h"
+#include "bake/SphericalFunctions.h"
+
+namespace baker {
+
+// The Gauss order per quadrature piece used for every exact inner product. Doubling it changes
+// no Gram or moment entry of any basis by more than 1e-12 relative (SphereQuadratureTest).
+constexpr int kExactQuadratureOrder = 16;
+
+// Inner products ∫ f_i g_j dω with the piecewise quadrature split along both sets' kinks.
+Eigen::MatrixXd innerProducts(const SphericalFunctions& f, const SphericalFunctions& g,
+                              int order = kExactQuadratureOrder);
+
+// Clamped-cosine convolution factors for orthonormal real SH: A0 = π, A1 = 2π/3, A2 = π/4,
+// odd l > 1 vanish, even l = 2π(−1)^(l/2−1)/((l+2)(l−1)) · l!/(2^l ((l/2)!)²).
+double clampedCosineBand(int l);
+
+// Optional band window for the radiance→irradiance operator (paper eq. 8): none, or a Hann
+// window h_l = (1 + cos(πl/(w+1)))/2 that fades bands out up to width w, which trades a little
+// sharpness for less ringing.
+struct BandWindow {
+  int hannWidth = 0;  // 0: no window
+  double factor(int l) const;
+};
+
+struct ShReproduction {
+  // ‖I − P[0:n, 0:n]‖_F with P = B_shᵀ G⁻¹ B_sh and n = (L+1)², for L = 0..maxOrder.
+  std::vector<double> cumulative;
+  // √(Σ_{k≤L} cumulative(k)²): the definition that reproduces the paper's Ambient Dice rows.
+  std::vector<double> runningSum;
+};
+
+// Everything derived from one function set's Gram matrix G_ij = ∫ f_i f_j dω, built once in
+// double precision and cached per SH order.
+class GramOperators {
+ public:
+  // Throws NumericalError naming `label` when G is numerically singular.
+  GramOperators(const SphericalFunctions& functions, std::string label);
+
+  const Eigen::MatrixXd& gram() const { return gram_; }
+  const Eigen::MatrixXd& gramInverse() const { return inverse_; }
+  double conditionNumber() const { return condition_; }
+
+  // B_sh(i, j) = ∫ f_i Y_j dω for SH up to order L.
+  const Eigen::MatrixXd& shMoments(int order) const;
+  // Coefficients of the least-squares fit of an SH expansion of order L: G⁻¹ B_sh.
+  Eigen::MatrixXd fromSh(int order) const { return inverse_ * shMoments(order); }
+  // Coefficients from samples at directions with quadrature weights: G⁻¹ Bᵀ W (moments by the
+  // samples' quadrature, Gram exact). Contrast leastSquaresProjection, which fits the samples.
+  Eigen::MatrixXd fromSamples(const DirectionSet& samples) const;
+
+  // Radiance coefficients → irradiance coefficients (paper eq. 7), G⁻¹ B_sh C B_shᵀ, summing SH
+  // bands until no entry changes by more than 1e-6 of the largest. Reports the order used.
+  Eigen::MatrixXd radianceToIrradiance(const BandWindow& window = {}, int* orderUsed = nullptr) const;
+
+  ShReproduction shReproduction(int maxOrder) const;
+
+ private:
+  const SphericalFunctions& functions_;
+  std::string label_;
+  Eigen::MatrixXd gram_, inverse_;
+  double condition_ = 0.0;
+  mutable std::map<int, Eigen::MatrixXd> shMoments_;
+};
+
+// The inverse of a symmetric positive definite matrix through its eigendecomposition, with
+// its condition number; throws NumericalError naming `label` above 1e12 or when not positive.
+Eigen::MatrixXd invertSymmetric(const Eigen::MatrixXd& matrix, const std::string& label, double* conditionNumber);
+
+}  // namespace baker
