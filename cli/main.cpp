@@ -1,4 +1,10 @@
-#include "cli/BakeCommand.h"
+#include <cstring>
 
-// `baker SCENE ...` bakes; later commands are dispatched on their first word here.
-int main(int argc, char** argv) { return baker::runBakeCommand(argc, argv); }
+#include "cli/BakeCommand.h"
+#include "cli/BasesCommand.h"
+
+// `baker COMMAND ...` runs a named command; anything else (`baker SCENE ...`) bakes.
+int main(int argc, char** argv) {
+  if (argc > 1 && std::strcmp(argv[1], "bases") == 0) return baker::runBasesCommand(argc - 1, argv + 1);
+  return baker::runBakeCommand(argc, argv);
+}
