@@ -5,11 +5,12 @@
 #include <tbb/parallel_for.h>
 
 #include <Eigen/Core>
+#include <chrono>
 #include <vector>
 
 #include "bake/DirectionSet.h"
 #include "bake/ProbeTracer.h"
-#include "bake/ProjectionOperator.h"
+#include "bake/GramOperators.h"
 #include "common/Error.h"
 
 namespace baker {
@@ -20,19 +21,20 @@ namespace {
 struct ChannelGroup {
   int firstChannel = 0;
   int channelCount = 0;
-  Eigen::MatrixXf projection;  // functions × directions
+  Eigen::MatrixXf projection;  // radiance samples → irradiance coefficients: functions × directions
 };
 
-std::vector<ChannelGroup> groupChannels(const Basis& basis, const DirectionSet& directions, double* worstCondition) {
+std::vector<ChannelGroup> groupChannels(const Basis& basis, const DirectionSet& directions, int shOrder,
+                                        double* worstCondition) {
   std::vector<ChannelGroup> groups;
   for (int c = 0; c < 3; ++c) {
     if (c > 0 && &basis.functions(c) == &basis.functions(c - 1)) {
       ++groups.back().channelCount;
       continue;
     }
-    ProjectionOperator op = leastSquaresProjection(basis.functions(c), directions, basis.name());
-    *worstCondition = std::max(*worstCondition, op.conditionNumber);
-    groups.push_back({c, 1, op.matrix.cast<float>()});
+    const GramOperators ops(basis.functions(c), basis.name());
+    *worstCondition = std::max(*worstCondition, ops.conditionNumber());
+    groups.push_back({c, 1, ops.irradianceFromSamples(directions, shOrder).cast<float>()});
   }
   return groups;
 }
@@ -43,8 +45,11 @@ Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basi
                   BakeStats* stats) {
   if (rays <= 0) throw InputError(fmt::format("--rays must be positive, got {}", rays));
   const DirectionSet directions = sphericalFibonacci(rays);
+  const auto start = std::chrono::steady_clock::now();
   double condition = 0.0;
-  const std::vector<ChannelGroup> groups = groupChannels(basis, directions, &condition);
+  const int shOrder = resolvableShOrder(directions.size());
+  const std::vector<ChannelGroup> groups = groupChannels(basis, directions, shOrder, &condition);
+  const auto operatorsBuilt = std::chrono::steady_clock::now();
   std::vector<Eigen::Vector3f> rayDirections;
   for (const Eigen::Vector3d& d : directions.directions) rayDirections.push_back(d.cast<float>());
   const ProbeTracer probeTracer(scene, tracer, rayDirections);
@@ -105,6 +110,9 @@ Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basi
     stats->raysPerProbe = rays;
     stats->raysTraced = grid.probeCount() * rays;
     stats->conditionNumber = condition;
+    stats->shOrder = shOrder;
+    stats->operatorSeconds = std::chrono::duration<double>(operatorsBuilt - start).count();
+    stats->traceSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - operatorsBuilt).count();
   }
   return volume;
 }

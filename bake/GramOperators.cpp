@@ -4,7 +4,9 @@
 
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <functional>
 
+#include "bake/ProjectionOperator.h"
 #include "bake/SphereQuadrature.h"
 #include "bake/SphericalHarmonics.h"
 #include "common/Error.h"
@@ -84,14 +86,11 @@ Eigen::MatrixXd GramOperators::fromSamples(const DirectionSet& samples) const {
   return inverse_ * sampleFunctions(functions_, samples).transpose() * weightsOf(samples).asDiagonal();
 }
 
-Eigen::MatrixXd GramOperators::radianceToIrradiance(const BandWindow& window, int* orderUsed) const {
+Eigen::MatrixXd GramOperators::convergedBandSum(const std::function<Eigen::MatrixXd(int)>& operatorAtOrder,
+                                                int* orderUsed) const {
   Eigen::MatrixXd previous;
   for (int order = 8;; order += 8) {
-    const Eigen::MatrixXd& b = shMoments(order);
-    Eigen::VectorXd c(b.cols());
-    for (int l = 0; l <= order; ++l)
-      for (int m = -l; m <= l; ++m) c[l * l + l + m] = clampedCosineBand(l) * window.factor(l);
-    Eigen::MatrixXd op = inverse_ * b * c.asDiagonal() * b.transpose();
+    Eigen::MatrixXd op = operatorAtOrder(order);
     if (previous.size() && (op - previous).cwiseAbs().maxCoeff() <= 1e-6 * op.cwiseAbs().maxCoeff()) {
       if (orderUsed) *orderUsed = order;
       return op;
@@ -100,6 +99,36 @@ Eigen::MatrixXd GramOperators::radianceToIrradiance(const BandWindow& window, in
       throw NumericalError(fmt::format("{}: the irradiance operator has not converged at SH order {}", label_, order));
     previous = std::move(op);
   }
+}
+
+Eigen::VectorXd GramOperators::bandFactors(int order, const BandWindow& window) {
+  Eigen::VectorXd c((order + 1) * (order + 1));
+  for (int l = 0; l <= order; ++l)
+    for (int m = -l; m <= l; ++m) c[l * l + l + m] = clampedCosineBand(l) * window.factor(l);
+  return c;
+}
+
+Eigen::MatrixXd GramOperators::radianceToIrradiance(const BandWindow& window, int* orderUsed) const {
+  return convergedBandSum(
+      [&](int order) {
+        const Eigen::MatrixXd& b = shMoments(order);
+        return Eigen::MatrixXd(inverse_ * b * bandFactors(order, window).asDiagonal() * b.transpose());
+      },
+      orderUsed);
+}
+
+int resolvableShOrder(std::size_t sampleCount) {
+  int order = 0;
+  while (order + 1 <= SphericalHarmonics::kMaxOrder && std::size_t((order + 2) * (order + 2)) * 4 <= sampleCount)
+    ++order;
+  return order;
+}
+
+Eigen::MatrixXd GramOperators::irradianceFromSamples(const DirectionSet& samples, int shOrder,
+                                                     const BandWindow& window) const {
+  const SphericalHarmonics sh(shOrder);
+  const ProjectionOperator fit = leastSquaresProjection(sh, samples, label_ + " (SH fit of the samples)");
+  return inverse_ * shMoments(shOrder) * bandFactors(shOrder, window).asDiagonal() * fit.matrix;
 }
 
 ShReproduction GramOperators::shReproduction(int maxOrder) const {

@@ -1,5 +1,6 @@
 #pragma once
 #include <Eigen/Core>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -40,6 +41,7 @@ struct ShReproduction {
 // double precision and cached per SH order.
 class GramOperators {
  public:
+  // `functions` must outlive this object (SH moments are computed on demand).
   // Throws NumericalError naming `label` when G is numerically singular.
   GramOperators(const SphericalFunctions& functions, std::string label);
 
@@ -59,15 +61,31 @@ class GramOperators {
   // bands until no entry changes by more than 1e-6 of the largest. Reports the order used.
   Eigen::MatrixXd radianceToIrradiance(const BandWindow& window = {}, int* orderUsed = nullptr) const;
 
+  // Radiance samples → irradiance coefficients in one operator, G⁻¹ B_sh C P: P fits the
+  // samples with SH of order `shOrder` (weighted least squares), C convolves with the clamped
+  // cosine, G⁻¹ B_sh projects the result exactly into this basis. What a bake applies to each
+  // brick. Bands above what the samples resolve would only carry their aliasing, so the caller
+  // passes resolvableShOrder(samples).
+  Eigen::MatrixXd irradianceFromSamples(const DirectionSet& samples, int shOrder, const BandWindow& window = {}) const;
+
   ShReproduction shReproduction(int maxOrder) const;
 
  private:
+  // Builds operatorAtOrder(8), (16), … until consecutive results agree to 1e-6 of the largest entry.
+  Eigen::MatrixXd convergedBandSum(const std::function<Eigen::MatrixXd(int)>& operatorAtOrder, int* orderUsed) const;
+  // diag(C) with the window applied: A_l·h_l for every (l, m) up to `order`.
+  static Eigen::VectorXd bandFactors(int order, const BandWindow& window);
+
   const SphericalFunctions& functions_;
   std::string label_;
   Eigen::MatrixXd gram_, inverse_;
   double condition_ = 0.0;
   mutable std::map<int, Eigen::MatrixXd> shMoments_;
 };
+
+// The highest SH order a set of n well-spread directions resolves with margin: the largest L
+// with 4·(L+1)² ≤ n (the fit then stays near-orthogonal: condition number close to 1).
+int resolvableShOrder(std::size_t sampleCount);
 
 // The inverse of a symmetric positive definite matrix through its eigendecomposition, with
 // its condition number; throws NumericalError naming `label` above 1e12 or when not positive.

@@ -12,6 +12,7 @@ class ShBasis : public Basis {
   std::string name() const override { return "sh-l" + std::to_string(sh_.order()); }
   const SphericalFunctions& functions(int) const override { return sh_; }
   int coefficientsPerLookup() const override { return 3 * sh_.count(); }
+  Eigen::Vector3f reconstruct(const float* coefficients, const Eigen::Vector3d& d) const override;
 
  private:
   SphericalHarmonics sh_;

@@ -6,34 +6,13 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "bake/Icosahedron.h"
 #include "bake/Quadrature.h"
 
 namespace baker {
 namespace {
 
 using Polygon = std::vector<Eigen::Vector3d>;
-
-// The 20 faces of the icosahedron with vertices (±1, ±Φ, 0) and cyclic permutations,
-// found as the triples of mutually adjacent vertices.
-std::vector<std::array<Eigen::Vector3d, 3>> icosahedronFaces() {
-  const double t = (std::sqrt(5.0) - 1.0) / 2.0;
-  std::vector<Eigen::Vector3d> v;
-  for (double s1 : {-1.0, 1.0})
-    for (double s2 : {-t, t}) {
-      v.emplace_back(s1, s2, 0.0);
-      v.emplace_back(0.0, s1, s2);
-      v.emplace_back(s2, 0.0, s1);
-    }
-  for (auto& p : v) p.normalize();
-  // Adjacent vertices are the nearest ones: cos(angle) = 1/√5.
-  auto adjacent = [&](int a, int b) { return std::abs(v[a].dot(v[b]) - 1.0 / std::sqrt(5.0)) < 1e-9; };
-  std::vector<std::array<Eigen::Vector3d, 3>> faces;
-  for (int a = 0; a < 12; ++a)
-    for (int b = a + 1; b < 12; ++b)
-      for (int c = b + 1; c < 12; ++c)
-        if (adjacent(a, b) && adjacent(b, c) && adjacent(a, c)) faces.push_back({v[a], v[b], v[c]});
-  return faces;
-}
 
 // Splits a convex planar polygon by the plane n·p = 0 into its parts on either side.
 void clip(const Polygon& poly, const Eigen::Vector3d& n, std::vector<Polygon>* out) {
@@ -73,7 +52,10 @@ DirectionSet piecewiseSphereQuadrature(int order, const std::vector<Eigen::Vecto
   }
 
   DirectionSet set;
-  for (const auto& face : icosahedronFaces()) {
+  const Icosahedron& ico = Icosahedron::instance();
+  for (int t = 0; t < Icosahedron::kTriangleCount; ++t) {
+    const std::array<Eigen::Vector3d, 3> face = {ico.vertex(ico.triangle(t)[0]), ico.vertex(ico.triangle(t)[1]),
+                                                 ico.vertex(ico.triangle(t)[2])};
     const Eigen::Vector3d centre = (face[0] + face[1] + face[2]) / 3.0;
     const Eigen::Vector3d normal = (face[1] - face[0]).cross(face[2] - face[0]).normalized();
     const double height = std::abs(normal.dot(face[0]));  // distance of the face plane from the centre
@@ -94,11 +76,11 @@ DirectionSet piecewiseSphereQuadrature(int order, const std::vector<Eigen::Vecto
     }
     for (const Polygon& piece : pieces) {
       if (polygonArea(piece) < 1e-14) continue;  // a sliver left by a plane through a corner
-      for (std::size_t t = 1; t + 1 < piece.size(); ++t) {
+      for (std::size_t corner = 1; corner + 1 < piece.size(); ++corner) {
         // Duffy map of the unit square onto (p0, p1, p2): p = p0 + u(p1 − p0) + uv(p2 − p1),
         // dA = u·|(p1 − p0) × (p2 − p1)| du dv, collapsing the edge u = 0 onto p0.
         const Eigen::Vector3d& p0 = piece[0];
-        const Eigen::Vector3d e1 = piece[t] - p0, e2 = piece[t + 1] - piece[t];
+        const Eigen::Vector3d e1 = piece[corner] - p0, e2 = piece[corner + 1] - piece[corner];
         const double area2 = e1.cross(e2).norm();
         for (int i = 0; i < order; ++i)
           for (int j = 0; j < order; ++j) {

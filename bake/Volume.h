@@ -7,7 +7,7 @@
 
 namespace baker {
 
-// A baked irradiance volume: per probe, the basis coefficients of the radiance it receives,
+// A baked irradiance volume: per probe, the basis coefficients of the irradiance E(n) it receives,
 // laid out as Basis describes (channel after channel). Probe p = i + nx·(j + ny·k).
 struct Volume {
   ProbeGrid grid;

@@ -90,16 +90,21 @@ int runBakeCommand(int argc, char** argv) {
           {"bricks", stats.bricks},
           {"rays_per_probe", stats.raysPerProbe},
           {"rays_traced", stats.raysTraced},
-          {"projection_condition_number", stats.conditionNumber},
-          {"seconds", {{"load", loadSeconds}, {"bvh", bvhSeconds}, {"bake", bakeSeconds}, {"write", writeSeconds},
+          {"gram_condition_number", stats.conditionNumber},
+          {"sample_fit_sh_order", stats.shOrder},
+          {"seconds", {{"load", loadSeconds}, {"bvh", bvhSeconds}, {"operators", stats.operatorSeconds},
+                       {"trace_and_project", stats.traceSeconds}, {"bake", bakeSeconds}, {"write", writeSeconds},
                        {"total", totalSeconds}}},
-          {"mrays_per_second", bakeSeconds > 0 ? stats.raysTraced / bakeSeconds * 1e-6 : 0.0},
+          {"mrays_per_second", stats.traceSeconds > 0 ? stats.raysTraced / stats.traceSeconds * 1e-6 : 0.0},
       };
       std::cout << j.dump(2) << "\n";
     } else {
-      std::cerr << fmt::format("baked {} probes ({} × {} × {}, spacing {:.4g} m) × {} rays in {:.2f} s ({:.1f} Mrays/s)\n",
+      std::cerr << fmt::format("baked {} probes ({} × {} × {}, spacing {:.4g} m) × {} rays in {:.2f} s ({:.1f} Mrays/s; "
+                               "operators {:.2f} s)\n",
                                stats.probes, grid.dims.x(), grid.dims.y(), grid.dims.z(), grid.spacing, rays,
-                               bakeSeconds, bakeSeconds > 0 ? stats.raysTraced / bakeSeconds * 1e-6 : 0.0);
+                               stats.traceSeconds,
+                               stats.traceSeconds > 0 ? stats.raysTraced / stats.traceSeconds * 1e-6 : 0.0,
+                               stats.operatorSeconds);
       std::cout << fmt::format("wrote {} ({}, {} coefficients per probe)\n", outPath, basis->name(),
                                basis->totalCoefficients());
     }

@@ -6,7 +6,7 @@ openvdb::MetaMap volumeMetadata(const Volume& volume, const Basis& basis) {
   openvdb::MetaMap meta;
   meta.insertMeta("baker.version", openvdb::StringMetadata(BAKER_VERSION));
   meta.insertMeta("baker.basis", openvdb::StringMetadata(basis.name()));
-  meta.insertMeta("baker.quantity", openvdb::StringMetadata("radiance"));
+  meta.insertMeta("baker.quantity", openvdb::StringMetadata("irradiance"));
   meta.insertMeta("baker.color_space", openvdb::StringMetadata(colorSpaceName(basis.colorSpace())));
   meta.insertMeta("baker.coefficients_per_probe", openvdb::Int32Metadata(basis.totalCoefficients()));
   const ProbeGrid& g = volume.grid;

@@ -1,0 +1,159 @@
+#include "cli/EnvCommand.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "bake/BasisRegistry.h"
+#include "bake/IrradianceFit.h"
+#include "bake/IrradianceReference.h"
+#include "bake/LatLongEnvironment.h"
+#include "bake/SphericalGaussianBasis.h"
+#include "cli/CommandLine.h"
+#include "common/Error.h"
+#include "formats/AtomicFile.h"
+#include "formats/RgbImage.h"
+
+namespace baker {
+namespace {
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::unique_ptr<Basis> chooseBasis(const std::string& name, const CLI::App& app, double sharpness) {
+  if (!app.count("--sg-sharpness")) return makeBasis(name);
+  const int lobes = sphericalGaussianLobeCount(name);
+  if (lobes == 0) throw InputError(fmt::format("--sg-sharpness applies to sg-N bases only, not '{}'", name));
+  if (!(sharpness > 0.0) || !std::isfinite(sharpness))
+    throw InputError(fmt::format("--sg-sharpness must be a positive number, got {}", sharpness));
+  return std::make_unique<SphericalGaussianBasis>(lobes, sharpness);
+}
+
+// E/π, the quantity the RMSE measures, as an image.
+RgbImage toImage(const LatLongEnvironment& env, const Eigen::MatrixX3d& irradiance) {
+  RgbImage image(env.width(), env.height());
+  for (int t = 0; t < env.texelCount(); ++t)
+    for (int c = 0; c < 3; ++c) image.pixels[3 * std::size_t(t) + c] = float(irradiance(t, c) / M_PI);
+  return image;
+}
+
+// Writes reference, reconstruction and error (reconstruction − reference) of E/π as float EXR
+// and as sRGB PNG. Reference and reconstruction share one exposure that maps the reference's
+// mean to 0.18 (mid grey); the error PNG shows |error| scaled so that the largest is white.
+// Every file goes to a temporary name first, and all are renamed once all are complete.
+std::vector<std::string> writeImages(const std::string& dir, const LatLongEnvironment& env,
+                                     const Eigen::MatrixX3d& reference, const Eigen::MatrixX3d& reconstruction) {
+  const double referenceMean = reference.mean() / M_PI;
+  const double exposure = referenceMean > 0.0 ? 0.18 / referenceMean : 1.0;
+  const Eigen::MatrixX3d error = reconstruction - reference;
+  const double errorMax = error.cwiseAbs().maxCoeff() / M_PI;
+  struct Output {
+    const char* name;
+    const Eigen::MatrixX3d values, shown;
+    double exposure;
+  };
+  const Output outputs[] = {{"reference", reference, reference, exposure},
+                            {"reconstruction", reconstruction, reconstruction, exposure},
+                            {"error", error, error.cwiseAbs(), errorMax > 0.0 ? 1.0 / errorMax : 1.0}};
+
+  std::vector<std::unique_ptr<AtomicFile>> files;
+  std::vector<std::string> paths;
+  for (const Output& output : outputs) {
+    const std::string base = (std::filesystem::path(dir) / output.name).string();
+    paths.push_back(base + ".exr");
+    files.push_back(std::make_unique<AtomicFile>(paths.back()));
+    writeExr(toImage(env, output.values), files.back()->temporaryPath());
+    paths.push_back(base + ".png");
+    files.push_back(std::make_unique<AtomicFile>(paths.back()));
+    writeSrgbPng(toImage(env, output.shown), output.exposure, files.back()->temporaryPath());
+  }
+  for (const auto& file : files) file->commit();
+  return paths;
+}
+
+}  // namespace
+
+int runEnvCommand(int argc, char** argv) {
+  CLI::App app{
+      "Project a lat-long environment's irradiance into a basis and report its RMSE (on E/pi) against the exact "
+      "sum over all texels, as in section 4 of the Ambient Dice paper. SH bases: radiance projected by the texel "
+      "sum and convolved with the clamped cosine, unclamped and clamped at 0. Other bases: least squares fits to "
+      "the exact irradiance, solid-angle weighted and unweighted."};
+  std::string probePath, basisName, outDir;
+  double sharpness = 0.0;
+  bool json = false;
+  app.add_option("probe", probePath, "lat-long HDR or EXR image (+Y up, image centre towards -Z)")->required();
+  app.add_option("--basis", basisName, "basis (see `baker bases`; sg-N takes any N in 1..64)")->required();
+  app.add_flag("--json", json, "print the report as JSON on stdout");
+  app.add_option("--out-dir", outDir,
+                 "write reference, reconstruction (the first fit) and error (reconstruction - reference) of E/pi as "
+                 "float EXR, and as PNG: exposure mapping the reference mean to 0.18, sRGB curve; the error PNG "
+                 "shows |error| scaled so its maximum is white");
+  app.add_option("--sg-sharpness", sharpness, "lobe sharpness for sg-N bases (default: measured per N)");
+
+  return runGuarded("baker env", app, argc, argv, [&]() {
+    const std::unique_ptr<Basis> basis = chooseBasis(basisName, app, sharpness);
+    std::error_code ec;
+    if (!outDir.empty() && !std::filesystem::is_directory(outDir, ec))
+      throw InputError(fmt::format("--out-dir {}: no such directory", outDir));
+
+    const auto start = std::chrono::steady_clock::now();
+    const LatLongEnvironment env = LatLongEnvironment::load(probePath);
+    auto stage = std::chrono::steady_clock::now();
+    const Eigen::MatrixX3d reference = exactIrradiance(env);
+    const double referenceSeconds = secondsSince(stage);
+    stage = std::chrono::steady_clock::now();
+    const std::vector<IrradianceFit> fits = fitIrradiance(*basis, env, reference);
+    const double fitSeconds = secondsSince(stage);
+    const std::vector<std::string> written =
+        outDir.empty() ? std::vector<std::string>{} : writeImages(outDir, env, reference, fits.front().irradiance);
+    const auto* sg = dynamic_cast<const SphericalGaussianBasis*>(basis.get());
+
+    if (json) {
+      nlohmann::json rmse = nlohmann::json::object(), conditioning = nlohmann::json::object();
+      for (const IrradianceFit& fit : fits) {
+        rmse[fit.method] = fit.rmse;
+        if (fit.conditionNumber > 0) conditioning[fit.method] = fit.conditionNumber;
+      }
+      nlohmann::json report = {
+          {"probe", probePath},
+          {"width", env.width()},
+          {"height", env.height()},
+          {"basis", basis->name()},
+          {"color_space", colorSpaceName(basis->colorSpace())},
+          {"coefficients", basis->totalCoefficients()},
+          {"coefficients_per_lookup", basis->coefficientsPerLookup()},
+          {"quantity", "irradiance / pi"},
+          {"reference", "exact sum over all texels"},
+          {"rmse", rmse},
+          {"seconds", {{"total", secondsSince(start)}, {"reference", referenceSeconds}, {"fit", fitSeconds}}},
+      };
+      if (!conditioning.empty()) report["gram_condition_number"] = conditioning;
+      if (sg) report["sg_sharpness"] = sg->sharpness();
+      if (!written.empty()) report["outputs"] = written;
+      std::cout << report.dump(2) << "\n";
+    } else {
+      std::cout << fmt::format("probe   {} ({} x {} texels)\n", probePath, env.width(), env.height());
+      std::cout << fmt::format("basis   {} ({}, {} coefficients, {} per lookup{})\n", basis->name(),
+                               colorSpaceName(basis->colorSpace()), basis->totalCoefficients(),
+                               basis->coefficientsPerLookup(),
+                               sg ? fmt::format(", sharpness {:.4g}", sg->sharpness()) : "");
+      std::cout << "RMSE of irradiance/pi against the exact texel sum:\n";
+      for (const IrradianceFit& fit : fits)
+        std::cout << fmt::format("  {:<15} {:<10.6g} {}{}\n", fit.method, fit.rmse, fit.description,
+                                 fit.conditionNumber > 0 ? fmt::format(" (Gram condition {:.3g})", fit.conditionNumber)
+                                                         : "");
+      std::cout << fmt::format("exact reference {:.2f} s, fits {:.2f} s\n", referenceSeconds, fitSeconds);
+      for (const std::string& path : written) std::cout << "wrote " << path << "\n";
+    }
+    return 0;
+  });
+}
+
+}  // namespace baker
