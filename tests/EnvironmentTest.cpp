@@ -164,6 +164,29 @@ TEST(ShIrradianceOnProbes, MatchTheVerifiedTableWithinOnePercent) {
   }
 }
 
+// The notes' exact-reference values for the Ambient Dice fits (solid-angle-weighted least
+// squares to the exact irradiance image), within 1 %.
+TEST(AmbientDiceIrradianceOnProbes, MatchTheVerifiedTableWithinOnePercent) {
+  REQUIRE_SHARED_DATA();
+  struct Expectation {
+    const char* basis;
+    double ennis, grace;
+  };
+  const Expectation expectations[] = {{"ad-rgb", 0.03935, 0.007631}, {"ad-rgb-flat", 0.03767, 0.006011},
+                                      {"ad-srbf", 0.09891, 0.01401}};
+  for (const char* probe : {"ennis", "grace"}) {
+    const LatLongEnvironment env =
+        LatLongEnvironment::load(test::sharedDataPath(std::string("probes/") + probe + ".hdr"));
+    const Eigen::MatrixX3d reference = exactIrradiance(env);
+    for (const Expectation& e : expectations) {
+      const std::vector<IrradianceFit> fits = fitIrradiance(*makeBasis(e.basis), env, reference);
+      ASSERT_EQ(fits[0].method, "weighted_fit");
+      const double expected = std::string(probe) == "ennis" ? e.ennis : e.grace;
+      EXPECT_NEAR(fits[0].rmse, expected, 0.01 * expected) << probe << " " << e.basis;
+    }
+  }
+}
+
 struct CommandResult {
   int exitCode = -1;
   std::string out, err;
