@@ -11,6 +11,7 @@
 #include "bake/DirectionSet.h"
 #include "bake/ProbeTracer.h"
 #include "bake/GramOperators.h"
+#include "bake/NonNegativeProjection.h"
 #include "common/Error.h"
 
 namespace baker {
@@ -22,10 +23,11 @@ struct ChannelGroup {
   int firstChannel = 0;
   int channelCount = 0;
   Eigen::MatrixXf projection;  // radiance samples → irradiance coefficients: functions × directions
+  Eigen::MatrixXd gram;        // for the non-negative solve
 };
 
 std::vector<ChannelGroup> groupChannels(const Basis& basis, const DirectionSet& directions, int shOrder,
-                                        double* worstCondition) {
+                                        const BandWindow& window, double* worstCondition) {
   std::vector<ChannelGroup> groups;
   for (int c = 0; c < 3; ++c) {
     if (c > 0 && &basis.functions(c) == &basis.functions(c - 1)) {
@@ -34,7 +36,7 @@ std::vector<ChannelGroup> groupChannels(const Basis& basis, const DirectionSet& 
     }
     const GramOperators ops(basis.functions(c), basis.name());
     *worstCondition = std::max(*worstCondition, ops.conditionNumber());
-    groups.push_back({c, 1, ops.irradianceFromSamples(directions, shOrder).cast<float>()});
+    groups.push_back({c, 1, ops.irradianceFromSamples(directions, shOrder, window).cast<float>(), ops.gram()});
   }
   return groups;
 }
@@ -42,13 +44,13 @@ std::vector<ChannelGroup> groupChannels(const Basis& basis, const DirectionSet& 
 }  // namespace
 
 Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basis, const ProbeGrid& grid, int rays,
-                  BakeStats* stats) {
+                  BakeStats* stats, const ProjectionOptions& options) {
   if (rays <= 0) throw InputError(fmt::format("--rays must be positive, got {}", rays));
   const DirectionSet directions = sphericalFibonacci(rays);
   const auto start = std::chrono::steady_clock::now();
   double condition = 0.0;
   const int shOrder = resolvableShOrder(directions.size());
-  const std::vector<ChannelGroup> groups = groupChannels(basis, directions, shOrder, &condition);
+  const std::vector<ChannelGroup> groups = groupChannels(basis, directions, shOrder, options.window, &condition);
   const auto operatorsBuilt = std::chrono::steady_clock::now();
   std::vector<Eigen::Vector3f> rayDirections;
   for (const Eigen::Vector3d& d : directions.directions) rayDirections.push_back(d.cast<float>());
@@ -97,7 +99,14 @@ Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basi
           const int offset = basis.coefficientOffset(group.firstChannel + c);
           for (int q = 0; q < p; ++q) {
             float* out = volume.coefficients.data() + probes[q] * volume.coefficientsPerProbe + offset;
-            for (int f = 0; f < coefficients.rows(); ++f) out[f] = coefficients(f, c * p + q);
+            if (options.nonNegative) {
+              // The linear coefficients carry the moments m = G·c; re-solve them with c ≥ 0.
+              const Eigen::VectorXd linear = coefficients.col(c * p + q).cast<double>();
+              const Eigen::VectorXd constrained = nonNegativeProjection(group.gram, group.gram * linear);
+              for (int f = 0; f < coefficients.rows(); ++f) out[f] = float(constrained[f]);
+            } else {
+              for (int f = 0; f < coefficients.rows(); ++f) out[f] = coefficients(f, c * p + q);
+            }
           }
         }
       }

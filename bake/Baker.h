@@ -2,6 +2,7 @@
 #include <cstdint>
 
 #include "bake/Basis.h"
+#include "bake/GramOperators.h"
 #include "bake/ProbeGrid.h"
 #include "bake/Volume.h"
 #include "scene/RayTracer.h"
@@ -23,11 +24,17 @@ struct BakeStats {
   double traceSeconds = 0.0;     // tracing and projecting every brick
 };
 
+// How ray samples become coefficients beyond the default linear projection.
+struct ProjectionOptions {
+  BandWindow window;         // Hann window on the SH bands (paper eq. 8) against ringing
+  bool nonNegative = false;  // coefficients ≥ 0 by a per-probe constrained solve (NonNegativeProjection)
+};
+
 // Traces `rays` spherical Fibonacci directions from every probe of `grid` and projects the
 // irradiance they imply (E(n) = ∫ L max(0, n·ω) dω, full irradiance, not E/π) into `basis`:
 // one matrix product per brick and channel group. The result does not depend on the number of
 // threads.
 Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basis, const ProbeGrid& grid, int rays,
-                  BakeStats* stats);
+                  BakeStats* stats, const ProjectionOptions& options = {});
 
 }  // namespace baker

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "bake/AmbientCubeBasis.h"
 #include "bake/AmbientDiceBezier.h"
 #include "bake/AmbientDiceLinear.h"
@@ -35,6 +37,15 @@ std::unique_ptr<Basis> makeBasis(const std::string& name) {
   if (name == "ambient-cube") return std::make_unique<AmbientCubeBasis>();
   if (const int lobes = sphericalGaussianLobeCount(name)) return std::make_unique<SphericalGaussianBasis>(lobes);
   throw InputError(fmt::format("unknown basis '{}' (known: {})", name, fmt::join(basisNames(), ", ")));
+}
+
+std::unique_ptr<Basis> makeBasis(const std::string& name, double sgSharpness) {
+  if (sgSharpness == 0.0) return makeBasis(name);
+  const int lobes = sphericalGaussianLobeCount(name);
+  if (lobes == 0) throw InputError(fmt::format("--sg-sharpness applies to sg-N bases only, not '{}'", name));
+  if (!(sgSharpness > 0.0) || !std::isfinite(sgSharpness))
+    throw InputError(fmt::format("--sg-sharpness must be a positive number, got {}", sgSharpness));
+  return std::make_unique<SphericalGaussianBasis>(lobes, sgSharpness);
 }
 
 }  // namespace baker

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "scene/Shading.h"
+
 namespace baker {
 
 ProbeTracer::ProbeTracer(const Scene& scene, const RayTracer& tracer, std::vector<Eigen::Vector3f> directions)
@@ -16,9 +18,10 @@ void ProbeTracer::trace(const Eigen::Vector3f& position, Eigen::Vector3f* radian
     for (int i = 0; i < count; ++i) {
       Eigen::Vector3f& out = radiance[first + i];
       out.setZero();
-      if (hits[i].triangle == Hit::kMiss) continue;
-      const Material& m = scene_.materials[scene_.triangleMaterial[hits[i].triangle]];
-      if (hits[i].frontFace || m.doubleSided) out = m.emission;
+      const Hit& hit = hits[i];
+      if (hit.missed()) continue;
+      const SurfaceSample surface = shadeSurface(scene_, scene_.instances[hit.instance].mesh, hit.triangle, hit.u, hit.v);
+      if (hit.frontFace || surface.doubleSided) out = surface.emission;
     }
   }
 }

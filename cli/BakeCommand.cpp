@@ -11,12 +11,14 @@
 
 #include "bake/Baker.h"
 #include "bake/BasisRegistry.h"
+#include "bake/SphericalGaussianBasis.h"
 #include "cli/CommandLine.h"
 #include "common/Error.h"
 #include "formats/AtomicFile.h"
 #include "formats/VdbWriter.h"
 #include "scene/GltfLoader.h"
 #include "scene/RayTracer.h"
+#include "scene/SceneOptions.h"
 
 namespace baker {
 namespace {
@@ -44,6 +46,16 @@ int runBakeCommand(int argc, char** argv) {
   app.add_option("--rays", rays, "directions traced per probe")->capture_default_str();
   app.add_option("--threads", threads, "worker threads; default: all cores (the result does not depend on it)");
   app.add_flag("--json", json, "print the summary as JSON on stdout");
+  double sgSharpness = 0.0;
+  ProjectionOptions projection;
+  app.add_option("--sg-sharpness", sgSharpness, "lobe sharpness λ for sg-N bases; default: measured per N");
+  app.add_option("--window", projection.window.hannWidth,
+                 "fade SH bands out with a Hann window of this width before projecting (paper eq. 8; less "
+                 "ringing around bright small sources); default: none");
+  app.add_flag("--non-negative", projection.nonNegative,
+               "solve for coefficients >= 0 per probe instead of the linear projection");
+  SceneOptions sceneOptions;
+  addSceneOptions(app, sceneOptions);
 
   return runGuarded("baker", app, argc, argv, [&]() {
     if (app.count("--spacing") && !(spacing > 0.0))
@@ -51,7 +63,11 @@ int runBakeCommand(int argc, char** argv) {
     if (rays <= 0 || rays > (1 << 20)) throw InputError(fmt::format("--rays must be in 1..{}, got {}", 1 << 20, rays));
     if (threads < 0) throw InputError(fmt::format("--threads must be positive, got {}", threads));
     if (outPath.empty()) outPath = std::filesystem::path(scenePath).stem().string() + ".vdb";
-    const std::unique_ptr<Basis> basis = makeBasis(basisName);
+    if (app.count("--sg-sharpness") && sgSharpness == 0.0)
+      throw InputError("--sg-sharpness must be a positive number, got 0");
+    if (projection.window.hannWidth < 0)
+      throw InputError(fmt::format("--window must be a band count >= 1, got {}", projection.window.hannWidth));
+    const std::unique_ptr<Basis> basis = makeBasis(basisName, sgSharpness);
     requireOutputDirectory(outPath);
 
     std::unique_ptr<tbb::global_control> threadLimit;
@@ -59,7 +75,7 @@ int runBakeCommand(int argc, char** argv) {
       threadLimit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, threads);
 
     const auto start = std::chrono::steady_clock::now();
-    Scene scene = loadGltf(scenePath);
+    Scene scene = loadGltf(scenePath, sceneOptions);
     for (const std::string& w : scene.warnings) std::cerr << "baker: warning: " << w << "\n";
     const double loadSeconds = secondsSince(start);
     auto stage = std::chrono::steady_clock::now();
@@ -69,9 +85,13 @@ int runBakeCommand(int argc, char** argv) {
 
     stage = std::chrono::steady_clock::now();
     BakeStats stats;
-    Volume volume = bakeVolume(scene, tracer, *basis, grid, rays, &stats);
+    Volume volume = bakeVolume(scene, tracer, *basis, grid, rays, &stats, projection);
     const double bakeSeconds = secondsSince(stage);
     volume.settings["rays"] = std::to_string(rays);
+    volume.settings["window"] = std::to_string(projection.window.hannWidth);
+    volume.settings["non_negative"] = projection.nonNegative ? "true" : "false";
+    if (const auto* sg = dynamic_cast<const SphericalGaussianBasis*>(basis.get()))
+      volume.settings["sg_sharpness"] = fmt::format("{}", sg->sharpness());
     volume.settings["scene"] = std::filesystem::path(scenePath).filename().string();
 
     stage = std::chrono::steady_clock::now();

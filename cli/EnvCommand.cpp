@@ -26,15 +26,6 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-std::unique_ptr<Basis> chooseBasis(const std::string& name, const CLI::App& app, double sharpness) {
-  if (!app.count("--sg-sharpness")) return makeBasis(name);
-  const int lobes = sphericalGaussianLobeCount(name);
-  if (lobes == 0) throw InputError(fmt::format("--sg-sharpness applies to sg-N bases only, not '{}'", name));
-  if (!(sharpness > 0.0) || !std::isfinite(sharpness))
-    throw InputError(fmt::format("--sg-sharpness must be a positive number, got {}", sharpness));
-  return std::make_unique<SphericalGaussianBasis>(lobes, sharpness);
-}
-
 // E/π, the quantity the RMSE measures, as an image.
 RgbImage toImage(const LatLongEnvironment& env, const Eigen::MatrixX3d& irradiance) {
   RgbImage image(env.width(), env.height());
@@ -98,7 +89,9 @@ int runEnvCommand(int argc, char** argv) {
   app.add_option("--sg-sharpness", sharpness, "lobe sharpness for sg-N bases (default: measured per N)");
 
   return runGuarded("baker env", app, argc, argv, [&]() {
-    const std::unique_ptr<Basis> basis = chooseBasis(basisName, app, sharpness);
+    if (app.count("--sg-sharpness") && sharpness == 0.0)
+      throw InputError("--sg-sharpness must be a positive number, got 0");
+    const std::unique_ptr<Basis> basis = makeBasis(basisName, sharpness);
     std::error_code ec;
     if (!outDir.empty() && !std::filesystem::is_directory(outDir, ec))
       throw InputError(fmt::format("--out-dir {}: no such directory", outDir));

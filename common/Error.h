@@ -1,4 +1,5 @@
 #pragma once
+#include <algorithm>
 #include <stdexcept>
 #include <string>
 
@@ -17,5 +18,12 @@ class NumericalError : public std::runtime_error {
  public:
   explicit NumericalError(const std::string& message) : std::runtime_error(message) {}
 };
+
+// Library messages (tinygltf, OpenImageIO) may span lines; every error baker prints is one.
+inline std::string oneLine(std::string message) {
+  std::replace(message.begin(), message.end(), '\n', ' ');
+  while (!message.empty() && message.back() == ' ') message.pop_back();
+  return message.empty() ? "unknown error" : message;
+}
 
 }  // namespace baker

@@ -13,13 +13,6 @@
 namespace baker {
 namespace {
 
-// OpenImageIO's messages may span lines; the command line promises one.
-std::string oneLine(std::string message) {
-  std::replace(message.begin(), message.end(), '\n', ' ');
-  while (!message.empty() && message.back() == ' ') message.pop_back();
-  return message.empty() ? "unknown error" : message;
-}
-
 void write(const std::string& format, const OIIO::ImageSpec& spec, const void* data, const std::string& path) {
   auto out = OIIO::ImageOutput::create(format);
   if (!out) throw InputError(fmt::format("{}: cannot create a {} writer: {}", path, format, oneLine(OIIO::geterror())));

@@ -12,10 +12,11 @@
 namespace baker {
 namespace {
 
-// Larger accessors than this are refused before anything is allocated for them: a mesh
-// of 256M elements is beyond anything a probe bake is meant for, and a corrupt count must
-// not be able to exhaust memory.
-constexpr std::size_t kMaxElements = std::size_t(1) << 28;
+// Accessors of more values (elements × components) than this are refused before anything is
+// allocated for them: 256M values (1 GiB as floats) is beyond anything a probe bake is meant
+// for, and a corrupt count must not be able to exhaust memory, even for an accessor without a
+// bufferView (all zeros, nothing in the file backs its count).
+constexpr std::size_t kMaxValues = std::size_t(1) << 28;
 
 int componentSize(int type) {
   switch (type) {
@@ -85,7 +86,8 @@ GltfAccessor::GltfAccessor(const tinygltf::Model& model, int accessorIndex, std:
   components_ = componentCount(a.type);
   if (components_ == 0) fail(fmt::format("unknown type {}", a.type));
   if (componentSize(a.componentType) == 0) fail(fmt::format("unknown componentType {}", a.componentType));
-  if (a.count > kMaxElements) fail(fmt::format("count {} exceeds the limit of {}", a.count, kMaxElements));
+  if (a.count > kMaxValues / components_)
+    fail(fmt::format("count {} exceeds the limit of {} elements of this type", a.count, kMaxValues / components_));
   count_ = a.count;
 }
 
@@ -119,17 +121,17 @@ double GltfAccessor::readComponent(const unsigned char* p, int componentType, bo
   fail(fmt::format("unknown componentType {}", componentType));
 }
 
-template <typename Visit>
-void GltfAccessor::visitElements(Visit&& visit) const {
+GltfAccessor::Layout GltfAccessor::layout() const {
   const tinygltf::Accessor& a = model_.accessors[index_];
-  const std::size_t elemSize = std::size_t(componentSize(a.componentType)) * components_;
+  Layout l;
+  l.elementSize = std::size_t(componentSize(a.componentType)) * components_;
   if (a.bufferView >= 0) {
-    std::size_t stride = elemSize;
+    l.stride = l.elementSize;
     if (a.bufferView < int(model_.bufferViews.size()) && model_.bufferViews[a.bufferView].byteStride != 0)
-      stride = model_.bufferViews[a.bufferView].byteStride;
-    if (stride < elemSize) fail(fmt::format("byteStride {} is smaller than an element ({} bytes)", stride, elemSize));
-    const unsigned char* base = checkedView(model_, a.bufferView, a.byteOffset, count_, elemSize, stride, where());
-    for (std::size_t i = 0; i < count_; ++i) visit(i, base + i * stride);
+      l.stride = model_.bufferViews[a.bufferView].byteStride;
+    if (l.stride < l.elementSize)
+      fail(fmt::format("byteStride {} is smaller than an element ({} bytes)", l.stride, l.elementSize));
+    l.dense = checkedView(model_, a.bufferView, a.byteOffset, count_, l.elementSize, l.stride, where());
   }
   // Elements of an accessor without a bufferView are zero unless sparse substitutes them;
   // the caller's output starts zeroed for that reason.
@@ -137,28 +139,39 @@ void GltfAccessor::visitElements(Visit&& visit) const {
     const auto& s = a.sparse;
     if (s.count < 0 || std::size_t(s.count) > count_)
       fail(fmt::format("sparse.count {} is outside 0..{}", s.count, count_));
-    const int indexType = s.indices.componentType;
-    if (indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
-        indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
-      fail(fmt::format("sparse.indices.componentType {} is not an unsigned integer type", indexType));
-    const std::size_t indexSize = componentSize(indexType);
-    const unsigned char* indices = checkedView(model_, s.indices.bufferView, s.indices.byteOffset, s.count, indexSize,
-                                               indexSize, where() + " sparse.indices");
-    const unsigned char* values = checkedView(model_, s.values.bufferView, s.values.byteOffset, s.count, elemSize,
-                                              elemSize, where() + " sparse.values");
-    for (int k = 0; k < s.count; ++k) {
-      std::size_t target = std::size_t(readComponent(indices + k * indexSize, indexType, false));
-      if (target >= count_) fail(fmt::format("sparse.indices[{}] = {} is not below count {}", k, target, count_));
-      visit(target, values + k * elemSize);
-    }
+    l.indexType = s.indices.componentType;
+    if (l.indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && l.indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+        l.indexType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+      fail(fmt::format("sparse.indices.componentType {} is not an unsigned integer type", l.indexType));
+    l.sparseCount = std::size_t(s.count);
+    l.indexSize = componentSize(l.indexType);
+    l.sparseIndices = checkedView(model_, s.indices.bufferView, s.indices.byteOffset, l.sparseCount, l.indexSize,
+                                  l.indexSize, where() + " sparse.indices");
+    l.sparseValues = checkedView(model_, s.values.bufferView, s.values.byteOffset, l.sparseCount, l.elementSize,
+                                 l.elementSize, where() + " sparse.values");
+  }
+  return l;
+}
+
+template <typename Visit>
+void GltfAccessor::visitElements(const Layout& l, Visit&& visit) const {
+  if (l.dense)
+    for (std::size_t i = 0; i < count_; ++i) visit(i, l.dense + i * l.stride);
+  for (std::size_t k = 0; k < l.sparseCount; ++k) {
+    const std::size_t target = std::size_t(readComponent(l.sparseIndices + k * l.indexSize, l.indexType, false));
+    if (target >= count_) fail(fmt::format("sparse.indices[{}] = {} is not below count {}", k, target, count_));
+    visit(target, l.sparseValues + k * l.elementSize);
   }
 }
 
 std::vector<float> GltfAccessor::readFloats() const {
   const tinygltf::Accessor& a = model_.accessors[index_];
   const std::size_t compSize = componentSize(a.componentType);
+  // Every offset is checked before the output is allocated, so a count the buffers cannot
+  // back costs nothing.
+  const Layout l = layout();
   std::vector<float> out(count_ * components_, 0.0f);
-  visitElements([&](std::size_t i, const unsigned char* p) {
+  visitElements(l, [&](std::size_t i, const unsigned char* p) {
     for (int c = 0; c < components_; ++c)
       out[i * components_ + c] = float(readComponent(p + c * compSize, a.componentType, a.normalized));
   });
@@ -172,8 +185,9 @@ std::vector<std::uint32_t> GltfAccessor::readIndices() const {
       a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
       a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
     fail(fmt::format("indices must be an unsigned integer type, not componentType {}", a.componentType));
+  const Layout l = layout();
   std::vector<std::uint32_t> out(count_, 0);
-  visitElements([&](std::size_t i, const unsigned char* p) {
+  visitElements(l, [&](std::size_t i, const unsigned char* p) {
     out[i] = std::uint32_t(readComponent(p, a.componentType, false));
   });
   return out;

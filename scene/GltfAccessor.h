@@ -30,10 +30,22 @@ class GltfAccessor {
   std::string where() const;
   [[noreturn]] void fail(const std::string& what) const;
   double readComponent(const unsigned char* p, int componentType, bool normalized) const;
+  // Where the elements lie, every range checked against its buffer; allocates nothing.
+  struct Layout {
+    std::size_t elementSize = 0;
+    const unsigned char* dense = nullptr;  // null without a bufferView (all zeros)
+    std::size_t stride = 0;
+    const unsigned char* sparseIndices = nullptr;
+    const unsigned char* sparseValues = nullptr;
+    std::size_t sparseCount = 0;
+    int indexType = 0;
+    std::size_t indexSize = 0;
+  };
+  Layout layout() const;
   // Calls visit(elementIndex, firstByte) for the dense elements, then for the sparse
   // substitutions, so that later calls win.
   template <typename Visit>
-  void visitElements(Visit&& visit) const;
+  void visitElements(const Layout& layout, Visit&& visit) const;
 
   const tinygltf::Model& model_;
   int index_;

@@ -7,21 +7,23 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <set>
 
 #include "common/Error.h"
 #include "scene/GltfAccessor.h"
+#include "scene/GltfFiles.h"
+#include "scene/GltfImages.h"
+#include "scene/GltfLights.h"
+#include "scene/GltfMaterials.h"
+#include "scene/GltfMeshReader.h"
 
 namespace baker {
 namespace {
 
-const std::set<std::string> kSupportedRequiredExtensions = {"KHR_materials_emissive_strength"};
-
-// Textures are not decoded by this loader yet, so image payloads are skipped rather than
-// decoded for nothing (and a broken image does not stop a bake that does not use it).
-bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
-  return true;
-}
+// Extensions this loader applies; a file may require these and no others.
+const std::set<std::string> kAppliedExtensions = {"KHR_materials_emissive_strength", "KHR_mesh_quantization",
+                                                  "KHR_texture_transform", "KHR_lights_punctual"};
 
 Eigen::Matrix4d localTransform(const tinygltf::Node& node) {
   Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
@@ -38,175 +40,296 @@ Eigen::Matrix4d localTransform(const tinygltf::Node& node) {
   return t.matrix();
 }
 
+// Counts one kind of thing the loader assumed, remembering the first node for the message.
+struct Tally {
+  std::size_t count = 0;
+  int firstNode = -1;
+  void note(int node) {
+    if (count++ == 0) firstNode = node;
+  }
+};
+
 class SceneBuilder {
  public:
-  SceneBuilder(const tinygltf::Model& model, const std::string& file) : model_(model), file_(file) {}
+  SceneBuilder(const tinygltf::Model& model, const std::string& file, const GltfImages& images, int requestedScene)
+      : model_(model), file_(file), images_(images), requestedScene_(requestedScene) {}
 
   Scene build() {
     scene_.sourcePath = file_;
-    loadMaterials();
-    if (!model_.scenes.empty()) {
-      int sceneIndex = model_.defaultScene >= 0 ? model_.defaultScene : 0;
-      if (sceneIndex >= int(model_.scenes.size()))
-        throw InputError(fmt::format("{}: scene {} does not exist ({} scenes)", file_, sceneIndex, model_.scenes.size()));
-      for (int root : model_.scenes[sceneIndex].nodes)
-        visitNode(root, Eigen::Matrix4d::Identity(), 0, fmt::format("scenes[{}].nodes", sceneIndex));
-    }
-    if (degenerate_ > 0)
-      scene_.warnings.push_back(fmt::format("{}: skipped {} degenerate triangles", file_, degenerate_));
-    scene_.bounds.setEmpty();
-    for (const Eigen::Vector3i& t : scene_.triangles)
-      for (int k = 0; k < 3; ++k) scene_.bounds.extend(scene_.positions[t[k]]);
+    linkParents();
+    GltfMaterials materials = readMaterials(model_, images_, file_, scene_.warnings);
+    GltfMeshReader reader(model_, file_, materials);
+    selectScene();
+    if (scene_.sceneIndex >= 0) visitScene();
+    for (int node : meshNodes_) instantiate(node, reader);
+    for (const std::string& w : reader.warnings()) scene_.warnings.push_back(w);
+    reportAssumptions();
+    scene_.materials = std::move(materials.materials);
+    scene_.images = std::move(materials.images);
+    computeBounds();
+    scene_.extensionsUsed = model_.extensionsUsed;
+    for (const std::string& e : model_.extensionsUsed)
+      if (!kAppliedExtensions.count(e)) scene_.extensionsIgnored.push_back(e);
+    if (!scene_.extensionsIgnored.empty())
+      scene_.warnings.push_back(fmt::format("{}: not applied (no effect on a diffuse bake, or not supported): {}", file_,
+                                            fmt::join(scene_.extensionsIgnored, ", ")));
     return std::move(scene_);
   }
 
  private:
-  void loadMaterials() {
-    for (std::size_t i = 0; i < model_.materials.size(); ++i) {
-      const tinygltf::Material& src = model_.materials[i];
-      Material m;
-      m.name = src.name;
-      const auto& bc = src.pbrMetallicRoughness.baseColorFactor;
-      if (bc.size() >= 3) m.baseColor = Eigen::Vector3f(float(bc[0]), float(bc[1]), float(bc[2]));
-      double strength = 1.0;
-      auto ext = src.extensions.find("KHR_materials_emissive_strength");
-      if (ext != src.extensions.end() && ext->second.Has("emissiveStrength"))
-        strength = ext->second.Get("emissiveStrength").GetNumberAsDouble();
-      const auto& ef = src.emissiveFactor;
-      if (ef.size() >= 3) m.emission = Eigen::Vector3f(float(ef[0] * strength), float(ef[1] * strength), float(ef[2] * strength));
-      m.doubleSided = src.doubleSided;
-      std::string path = fmt::format("materials[{}]", i);
-      if (!m.baseColor.allFinite() || !m.emission.allFinite() || m.emission.minCoeff() < 0.0f || m.baseColor.minCoeff() < 0.0f)
-        throw InputError(fmt::format("{}: {}: base colour and emission must be finite and non-negative", file_, path));
-      scene_.materials.push_back(m);
+  [[noreturn]] void fail(const std::string& what) const { throw InputError(fmt::format("{}: {}", file_, what)); }
+
+  // glTF's node hierarchy is a set of disjoint trees: every child exists and has one parent.
+  void linkParents() {
+    parent_.assign(model_.nodes.size(), -1);
+    for (std::size_t n = 0; n < model_.nodes.size(); ++n)
+      for (int child : model_.nodes[n].children) {
+        if (child < 0 || std::size_t(child) >= model_.nodes.size())
+          fail(fmt::format("nodes[{}].children refers to node {}, which does not exist", n, child));
+        if (parent_[child] >= 0)
+          fail(fmt::format("nodes[{}] is a child of both nodes[{}] and nodes[{}]; glTF nodes have one parent", child,
+                           parent_[child], n));
+        parent_[child] = int(n);
+      }
+    world_.resize(model_.nodes.size());
+    known_.assign(model_.nodes.size(), false);
+  }
+
+  // The node's world transform, its ancestors' transforms applied; computed once.
+  const Eigen::Matrix4d& world(int node) {
+    std::vector<int> chain;
+    int n = node;
+    while (n >= 0 && !known_[n]) {
+      chain.push_back(n);
+      if (chain.size() > model_.nodes.size())
+        fail(fmt::format("nodes[{}] is its own ancestor (the node hierarchy has a cycle)", node));
+      n = parent_[n];
     }
-    // Primitives without a material use the glTF default: white, not emissive, single-sided.
-    defaultMaterial_ = std::uint32_t(scene_.materials.size());
-    scene_.materials.push_back(Material{"(default)", {1, 1, 1}, {0, 0, 0}, false});
+    Eigen::Matrix4d m = n >= 0 ? world_[n] : Eigen::Matrix4d::Identity();
+    for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
+      m = m * localTransform(model_.nodes[*it]);
+      if (!m.allFinite()) fail(fmt::format("nodes[{}] has a transform that is not finite", *it));
+      world_[*it] = m;
+      known_[*it] = true;
+    }
+    return world_[node];
   }
 
-  void visitNode(int index, const Eigen::Matrix4d& parent, int depth, const std::string& referrer) {
-    if (index < 0 || index >= int(model_.nodes.size()))
-      throw InputError(fmt::format("{}: {} refers to node {}, which does not exist", file_, referrer, index));
-    if (depth > int(model_.nodes.size()))
-      throw InputError(fmt::format("{}: nodes[{}] is its own ancestor (the node hierarchy has a cycle)", file_, index));
-    const tinygltf::Node& node = model_.nodes[index];
-    Eigen::Matrix4d world = parent * localTransform(node);
-    if (!world.allFinite())
-      throw InputError(fmt::format("{}: nodes[{}] has a transform that is not finite", file_, index));
-    if (node.mesh >= 0) addMesh(node.mesh, world, index);
-    for (int child : node.children) visitNode(child, world, depth + 1, fmt::format("nodes[{}].children", index));
+  void selectScene() {
+    const int count = int(model_.scenes.size());
+    scene_.sceneCount = count;
+    if (requestedScene_ >= 0) {
+      if (requestedScene_ >= count)
+        throw InputError(fmt::format("{}: --scene {}: the file has {} scene(s)", file_, requestedScene_, count));
+      scene_.sceneIndex = requestedScene_;
+    } else if (count == 0) {
+      if (!model_.nodes.empty())
+        scene_.warnings.push_back(fmt::format("{}: the file defines no scenes, so none of its {} nodes is loaded", file_,
+                                              model_.nodes.size()));
+    } else {
+      scene_.sceneIndex = model_.defaultScene >= 0 ? model_.defaultScene : 0;
+      if (scene_.sceneIndex >= count)
+        fail(fmt::format("scene {} does not exist ({} scenes)", scene_.sceneIndex, count));
+    }
   }
 
-  void addMesh(int meshIndex, const Eigen::Matrix4d& world, int nodeIndex) {
-    if (meshIndex >= int(model_.meshes.size()))
-      throw InputError(fmt::format("{}: nodes[{}].mesh refers to mesh {}, which does not exist", file_, nodeIndex, meshIndex));
-    const tinygltf::Mesh& mesh = model_.meshes[meshIndex];
-    // A mirroring transform turns counter-clockwise triangles clockwise: swap two corners
-    // so that front faces stay front faces.
-    const bool flip = world.topLeftCorner<3, 3>().determinant() < 0.0;
-    for (std::size_t p = 0; p < mesh.primitives.size(); ++p) {
-      const tinygltf::Primitive& prim = mesh.primitives[p];
-      std::string path = fmt::format("meshes[{}].primitives[{}]", meshIndex, p);
-      if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
-          prim.mode != TINYGLTF_MODE_TRIANGLE_FAN) {
-        if (warnedModes_.insert(prim.mode).second)
-          scene_.warnings.push_back(fmt::format("{}: {}: mode {} (points or lines) has no surface and is skipped", file_,
-                                                path, prim.mode));
-        continue;
+  // Depth first from the scene's roots, without recursion: hierarchies can be deep.
+  void visitScene() {
+    std::vector<bool> seen(model_.nodes.size(), false);
+    std::vector<int> stack;
+    const tinygltf::Scene& s = model_.scenes[scene_.sceneIndex];
+    for (auto it = s.nodes.rbegin(); it != s.nodes.rend(); ++it) {
+      if (*it < 0 || std::size_t(*it) >= model_.nodes.size())
+        fail(fmt::format("scenes[{}].nodes refers to node {}, which does not exist", scene_.sceneIndex, *it));
+      stack.push_back(*it);
+    }
+    while (!stack.empty()) {
+      const int n = stack.back();
+      stack.pop_back();
+      if (seen[n])
+        fail(fmt::format("nodes[{}] is reached twice from scenes[{}] (listed twice, or the hierarchy has a cycle)", n,
+                         scene_.sceneIndex));
+      seen[n] = true;
+      const tinygltf::Node& node = model_.nodes[n];
+      if (node.mesh >= 0) {
+        if (std::size_t(node.mesh) >= model_.meshes.size())
+          fail(fmt::format("nodes[{}].mesh refers to mesh {}, which does not exist", n, node.mesh));
+        meshNodes_.push_back(n);
       }
-      auto pos = prim.attributes.find("POSITION");
-      if (pos == prim.attributes.end())
-        throw InputError(fmt::format("{}: {}.attributes has no POSITION", file_, path));
-      GltfAccessor positions(model_, pos->second, file_, path + ".attributes.POSITION");
-      if (positions.components() != 3)
-        throw InputError(fmt::format("{}: {}.attributes.POSITION must be VEC3", file_, path));
-      std::vector<float> xyz = positions.readFloats();
-      const std::size_t base = scene_.positions.size();
-      for (std::size_t v = 0; v < positions.count(); ++v) {
-        Eigen::Vector4d local(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2], 1.0);
-        if (!local.allFinite())
-          throw InputError(fmt::format("{}: {}.attributes.POSITION[{}] is not finite", file_, path, v));
-        Eigen::Vector4d w = world * local;
-        scene_.positions.push_back(Eigen::Vector3f(float(w.x()), float(w.y()), float(w.z())));
-      }
+      if (std::optional<PunctualLight> light = readLight(model_, n, world(n), file_))
+        scene_.lights.push_back(std::move(*light));
+      for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.push_back(*it);
+    }
+  }
 
-      std::vector<std::uint32_t> indices;
-      if (prim.indices >= 0) {
-        indices = GltfAccessor(model_, prim.indices, file_, path + ".indices").readIndices();
-        for (std::size_t i = 0; i < indices.size(); ++i)
-          if (indices[i] >= positions.count())
-            throw InputError(fmt::format("{}: {}.indices[{}] = {} is not below the vertex count {}", file_, path, i,
-                                         indices[i], positions.count()));
-      } else {
-        indices.resize(positions.count());
-        for (std::size_t i = 0; i < indices.size(); ++i) indices[i] = std::uint32_t(i);
-      }
+  std::vector<double> morphWeights(const tinygltf::Node& node, int nodeIndex) const {
+    const bool fromNode = !node.weights.empty();
+    const std::vector<double>& w = fromNode ? node.weights : model_.meshes[node.mesh].weights;
+    for (double x : w)
+      if (!std::isfinite(x))
+        fail(fromNode ? fmt::format("nodes[{}].weights has a value that is not finite", nodeIndex)
+                      : fmt::format("meshes[{}].weights has a value that is not finite", node.mesh));
+    return w;
+  }
 
-      std::uint32_t material = defaultMaterial_;
-      if (prim.material >= 0) {
-        if (prim.material >= int(model_.materials.size()))
-          throw InputError(fmt::format("{}: {}.material refers to material {}, which does not exist", file_, path, prim.material));
-        material = std::uint32_t(prim.material);
+  // world(joint) × inverseBindMatrix for every joint of the node's skin: the joints where their
+  // nodes stand, so the skinned mesh takes its rest pose in world space.
+  std::vector<Eigen::Matrix4d> jointMatrices(int nodeIndex) {
+    const int skinIndex = model_.nodes[nodeIndex].skin;
+    if (std::size_t(skinIndex) >= model_.skins.size())
+      fail(fmt::format("nodes[{}].skin refers to skin {}, which does not exist", nodeIndex, skinIndex));
+    const tinygltf::Skin& skin = model_.skins[skinIndex];
+    const std::string path = fmt::format("skins[{}]", skinIndex);
+    std::vector<float> inverseBind;
+    if (skin.inverseBindMatrices >= 0) {
+      const GltfAccessor ibm(model_, skin.inverseBindMatrices, file_, path + ".inverseBindMatrices");
+      if (ibm.components() != 16 || ibm.count() < skin.joints.size())
+        fail(fmt::format("{}.inverseBindMatrices must be {} MAT4 elements", path, skin.joints.size()));
+      inverseBind = ibm.readFloats();
+    }
+    std::vector<Eigen::Matrix4d> joints;
+    for (std::size_t j = 0; j < skin.joints.size(); ++j) {
+      const int joint = skin.joints[j];
+      if (joint < 0 || std::size_t(joint) >= model_.nodes.size())
+        fail(fmt::format("{}.joints[{}] refers to node {}, which does not exist", path, j, joint));
+      Eigen::Matrix4d bind = Eigen::Matrix4d::Identity();
+      if (!inverseBind.empty()) bind = Eigen::Map<const Eigen::Matrix4f>(&inverseBind[16 * j]).cast<double>();
+      joints.push_back(world(joint) * bind);
+    }
+    return joints;
+  }
+
+  void instantiate(int nodeIndex, GltfMeshReader& reader) {
+    const tinygltf::Node& node = model_.nodes[nodeIndex];
+    const tinygltf::Mesh& mesh = model_.meshes[node.mesh];
+    const bool hasTargets = std::any_of(mesh.primitives.begin(), mesh.primitives.end(),
+                                        [](const tinygltf::Primitive& p) { return !p.targets.empty(); });
+    const bool skinned = node.skin >= 0;
+    MeshPose pose;
+    if (hasTargets) {
+      pose.morphWeights = morphWeights(node, nodeIndex);
+      morphed_.note(nodeIndex);
+    }
+    Instance instance;
+    instance.node = nodeIndex;
+    if (skinned) {
+      // A skinned mesh is posed in world space by its joints; glTF ignores its node's transform.
+      pose.jointMatrices = jointMatrices(nodeIndex);
+      skinned_.note(nodeIndex);
+    } else {
+      const Eigen::Matrix4d& w = world(nodeIndex);
+      const Eigen::Matrix3d linear = w.topLeftCorner<3, 3>();
+      if (!(std::abs(linear.determinant()) > 0.0)) {
+        singular_.note(nodeIndex);
+        return;
       }
-      auto emit = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-        if (flip) std::swap(b, c);
-        Eigen::Vector3i tri(int(base + a), int(base + b), int(base + c));
-        const Eigen::Vector3f& p0 = scene_.positions[tri[0]];
-        Eigen::Vector3f n = (scene_.positions[tri[1]] - p0).cross(scene_.positions[tri[2]] - p0);
-        if (!(n.squaredNorm() > 0.0f)) {
-          ++degenerate_;
-          return;
-        }
-        scene_.triangles.push_back(tri);
-        scene_.triangleMaterial.push_back(material);
-      };
-      const std::size_t n = indices.size();
-      if (prim.mode == TINYGLTF_MODE_TRIANGLES) {
-        for (std::size_t i = 0; i + 2 < n; i += 3) emit(indices[i], indices[i + 1], indices[i + 2]);
-      } else if (prim.mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
-        // Every other triangle of a strip is listed clockwise; the spec's order restores it.
-        for (std::size_t i = 0; i + 2 < n; ++i)
-          if (i % 2 == 0) emit(indices[i], indices[i + 1], indices[i + 2]);
-          else emit(indices[i + 1], indices[i], indices[i + 2]);
-      } else {
-        for (std::size_t i = 1; i + 1 < n; ++i) emit(indices[0], indices[i], indices[i + 1]);
+      instance.objectToWorld = w.cast<float>();
+      instance.normalToWorld = linear.inverse().transpose().cast<float>();
+      if (!instance.objectToWorld.allFinite() || !instance.normalToWorld.allFinite())
+        fail(fmt::format("nodes[{}] has a transform beyond floating-point range", nodeIndex));
+    }
+    // A mesh posed for this node alone (skinned, or morphed with the node's own weights) is read
+    // for it; any other use of a mesh shares one copy.
+    const bool ownPose = skinned || (hasTargets && !node.weights.empty());
+    const auto shared = sharedMeshes_.find(node.mesh);
+    if (!ownPose && shared != sharedMeshes_.end()) {
+      instance.mesh = shared->second;
+    } else {
+      instance.mesh = std::uint32_t(scene_.meshes.size());
+      scene_.meshes.push_back(reader.read(node.mesh, pose));
+      if (!ownPose) sharedMeshes_.emplace(node.mesh, instance.mesh);
+    }
+    instance.firstTriangle = nextTriangle_;
+    nextTriangle_ += scene_.meshes[instance.mesh].triangleCount();
+    scene_.instances.push_back(instance);
+  }
+
+  void reportAssumptions() {
+    std::vector<std::string> parts;
+    if (skinned_.count)
+      parts.push_back(fmt::format("{} skinned mesh instance(s) (first: nodes[{}]) in their rest pose, with the joints "
+                                  "where their nodes stand",
+                                  skinned_.count, skinned_.firstNode));
+    if (morphed_.count)
+      parts.push_back(fmt::format("{} mesh instance(s) with morph targets (first: nodes[{}]) at their default weights",
+                                  morphed_.count, morphed_.firstNode));
+    if (!model_.animations.empty())
+      parts.push_back(fmt::format("{} animation(s) not applied", model_.animations.size()));
+    if (!parts.empty())
+      scene_.warnings.push_back(fmt::format("{}: baked in the default pose: {}", file_, fmt::join(parts, "; ")));
+    if (singular_.count)
+      scene_.warnings.push_back(fmt::format("{}: skipped {} mesh instance(s) whose node transform is singular (first: "
+                                            "nodes[{}]); they have no area",
+                                            file_, singular_.count, singular_.firstNode));
+  }
+
+  // Bounds of the vertices triangles use, placed by every instance.
+  void computeBounds() {
+    scene_.bounds.setEmpty();
+    std::vector<std::vector<bool>> used(scene_.meshes.size());
+    for (const Instance& instance : scene_.instances) {
+      const Mesh& mesh = scene_.meshes[instance.mesh];
+      std::vector<bool>& u = used[instance.mesh];
+      if (u.empty()) {
+        u.assign(mesh.positions.size(), false);
+        for (const Eigen::Vector3i& t : mesh.triangles) u[t[0]] = u[t[1]] = u[t[2]] = true;
+      }
+      const Eigen::Matrix3f linear = instance.objectToWorld.topLeftCorner<3, 3>();
+      const Eigen::Vector3f offset = instance.objectToWorld.topRightCorner<3, 1>();
+      for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+        if (!u[v]) continue;
+        const Eigen::Vector3f p = linear * mesh.positions[v] + offset;
+        if (!p.allFinite())
+          fail(fmt::format("nodes[{}] places {} vertex {} beyond floating-point range", instance.node, mesh.source, v));
+        scene_.bounds.extend(p);
       }
     }
   }
 
   const tinygltf::Model& model_;
-  std::string file_;
+  const std::string& file_;
+  const GltfImages& images_;
+  int requestedScene_;
   Scene scene_;
-  std::uint32_t defaultMaterial_ = 0;
-  std::size_t degenerate_ = 0;
-  std::set<int> warnedModes_;
+  std::vector<int> parent_;
+  std::vector<Eigen::Matrix4d> world_;
+  std::vector<bool> known_;
+  std::vector<int> meshNodes_;
+  std::map<int, std::uint32_t> sharedMeshes_;
+  std::uint64_t nextTriangle_ = 0;
+  Tally skinned_, morphed_, singular_;
 };
 
 }  // namespace
 
-Scene loadGltf(const std::string& path) {
+Scene loadGltf(const std::string& path, const SceneOptions& options) {
+  // The environment first: a bad flag should not wait for a large scene to load.
+  std::vector<std::string> environmentWarnings;
+  Environment environment = environmentFromOptions(options, environmentWarnings);
+
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
     throw InputError(fmt::format("{}: scene file does not exist or is not a regular file", path));
+  checkExternalUris(path);
   tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(skipImage, nullptr);
+  GltfImages images;
+  images.install(loader);
+  const std::string folder = sceneFolderOf(path);
+  loader.SetFsCallbacks(confinedFileSystem(folder));
   tinygltf::Model model;
   std::string err, warn;
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  bool ok = ext == ".glb" ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
-                          : loader.LoadASCIIFromFile(&model, &err, &warn, path);
-  if (!ok) {
-    std::string reason = err.empty() ? "not a valid glTF 2.0 file" : err;
-    while (!reason.empty() && (reason.back() == '\n' || reason.back() == ' ')) reason.pop_back();
-    std::replace(reason.begin(), reason.end(), '\n', ';');
-    throw InputError(fmt::format("{}: cannot load glTF: {}", path, reason));
-  }
+  const bool ok = ext == ".glb" ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
+                                : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+  if (!ok) throw InputError(fmt::format("{}: cannot load glTF: {}", path, err.empty() ? "not a valid glTF 2.0 file" : oneLine(err)));
   for (const std::string& required : model.extensionsRequired)
-    if (!kSupportedRequiredExtensions.count(required))
+    if (!kAppliedExtensions.count(required))
       throw InputError(fmt::format("{}: extensionsRequired names {}, which this baker does not support", path, required));
-  Scene scene = SceneBuilder(model, path).build();
+
+  Scene scene = SceneBuilder(model, path, images, options.scene).build();
+  scene.environment = std::move(environment);
+  scene.warnings.insert(scene.warnings.end(), environmentWarnings.begin(), environmentWarnings.end());
   return scene;
 }
 

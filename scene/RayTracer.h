@@ -3,20 +3,40 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <limits>
+#include <memory>
+#include <vector>
 
 #include "scene/Scene.h"
 
 namespace baker {
 
-// Closest hit of one ray: the triangle (index into Scene::triangles) or kMiss.
+// Closest hit of one ray: triangle `triangle` of the mesh of instance `instance` (global id
+// Scene::globalTriangle(instance, triangle)), or both kMiss when the ray escaped.
 struct Hit {
   static constexpr std::uint32_t kMiss = 0xffffffffu;
+  std::uint32_t instance = kMiss;
   std::uint32_t triangle = kMiss;
+  float u = 0.0f, v = 0.0f;  // barycentric weights of the triangle's second and third corners
   float distance = 0.0f;
-  bool frontFace = false;  // the ray arrived on the counter-clockwise side
+  bool frontFace = false;  // the ray arrived on glTF's front side (counter-clockwise in object space)
+
+  bool missed() const { return triangle == kMiss; }
 };
 
-// One Embree device and scene over all the triangles of a Scene. Thread-safe for tracing.
+// A ray that only asks whether something blocks it between tnear and tfar.
+struct ShadowRay {
+  Eigen::Vector3f origin{0.0f, 0.0f, 0.0f};
+  Eigen::Vector3f direction{0.0f, 0.0f, 1.0f};
+  float tnear = 0.0f;
+  float tfar = std::numeric_limits<float>::infinity();
+};
+
+// One Embree device and scene over a Scene. A mesh that several instances use is built once,
+// in its own Embree scene, and placed by instance geometries; a mesh used once goes into the
+// top-level scene in world space (one BVH level fewer to traverse). MASK and BLEND triangles
+// sit in geometries of their own that carry intersection and occlusion filters; opaque
+// geometry has none, so it costs nothing extra. Thread-safe for tracing.
 class RayTracer {
  public:
   explicit RayTracer(const Scene& scene);
@@ -24,13 +44,34 @@ class RayTracer {
   RayTracer(const RayTracer&) = delete;
   RayTracer& operator=(const RayTracer&) = delete;
 
-  // Traces up to 8 rays sharing one origin (a probe's rays) as one packet.
+  // Traces up to 8 rays sharing one origin (a probe's rays) as one packet (rtcIntersect8).
   void intersect8(const Eigen::Vector3f& origin, const Eigen::Vector3f* directions, int count, Hit* hits) const;
+  // blocked[i]: something stops rays[i] between its tnear and tfar. Streams of rays
+  // (rtcOccluded1M), any count.
+  void occluded(const ShadowRay* rays, int count, bool* blocked) const;
+
+  int instancedMeshes() const { return instancedMeshes_; }    // meshes built once and instanced
+  int filteredGeometries() const { return filteredGeometries_; }  // geometries with alpha filters
+
+  // What a filter needs to find the surface a candidate hit lies on.
+  struct FilterTarget {
+    const Scene* scene;
+    std::uint32_t mesh;
+    std::uint32_t firstTriangle;  // the mesh triangle of the geometry's primitive 0
+  };
 
  private:
+  void attachMesh(RTCScene target, std::uint32_t mesh, const Eigen::Matrix4f& transform, unsigned firstId);
+  Hit decode(unsigned geomID, unsigned instID, unsigned primID, float u, float v, float distance,
+             const Eigen::Vector3f& direction) const;
+
   const Scene& scene_;
   RTCDevice device_ = nullptr;
   RTCScene rtcScene_ = nullptr;
+  std::vector<RTCScene> meshScenes_;  // per mesh; null unless the mesh is instanced
+  std::vector<std::unique_ptr<FilterTarget>> filterTargets_;  // stable addresses for Embree's user data
+  int instancedMeshes_ = 0;
+  int filteredGeometries_ = 0;
 };
 
 }  // namespace baker

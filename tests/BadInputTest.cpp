@@ -79,6 +79,12 @@ TEST_F(BadInput, ZeroSpacing) { expectRejected("'" + scene_ + "' --spacing 0 --o
 
 TEST_F(BadInput, NegativeSpacing) { expectRejected("'" + scene_ + "' --spacing -0.5 --out out.vdb", "--spacing"); }
 
+TEST_F(BadInput, SgSharpnessForAnotherBasis) {
+  expectRejected("'" + scene_ + "' --basis ad-srbf --sg-sharpness 2 --out out.vdb", "--sg-sharpness");
+}
+
+TEST_F(BadInput, NegativeWindow) { expectRejected("'" + scene_ + "' --window -1 --out out.vdb", "--window"); }
+
 TEST_F(BadInput, OutputInAMissingDirectory) {
   expectRejected("'" + scene_ + "' --out no_such_dir/out.vdb", "no_such_dir");
 }

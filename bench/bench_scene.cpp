@@ -1,0 +1,136 @@
+// Scene loading and BVH build: time, triangles per second and peak memory.
+//
+//   bench_scene [SCENE.gltf|.glb] [--grid N] [--instances K]
+//
+// Without a scene it generates one: a wavy grid of N × N quads (2N² triangles, default N = 1024)
+// placed by K nodes (default 1; K > 1 exercises instancing), written as .gltf + .bin in a
+// temporary folder by a child process so that generating it does not count towards the peak.
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "scene/GltfLoader.h"
+#include "scene/RayTracer.h"
+
+namespace {
+
+double peakMiB() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss / 1024.0;  // Linux reports kilobytes
+}
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void writeGrid(const std::string& dir, int n, int instances) {
+  const int side = n + 1;
+  std::vector<float> positions;
+  positions.reserve(std::size_t(side) * side * 3);
+  for (int j = 0; j < side; ++j)
+    for (int i = 0; i < side; ++i) {
+      const float x = float(i) / n, z = float(j) / n;
+      positions.insert(positions.end(), {x, 0.05f * std::sin(40.0f * x) * std::cos(37.0f * z), z});
+    }
+  std::vector<std::uint32_t> indices;
+  indices.reserve(std::size_t(n) * n * 6);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const std::uint32_t a = j * side + i, b = a + 1, c = a + side, d = c + 1;
+      indices.insert(indices.end(), {a, c, b, b, c, d});
+    }
+  const std::size_t positionBytes = positions.size() * sizeof(float), indexBytes = indices.size() * sizeof(std::uint32_t);
+  std::ofstream bin(dir + "/grid.bin", std::ios::binary);
+  bin.write(reinterpret_cast<const char*>(positions.data()), positionBytes);
+  bin.write(reinterpret_cast<const char*>(indices.data()), indexBytes);
+
+  nlohmann::json gltf = {
+      {"asset", {{"version", "2.0"}}},
+      {"scene", 0},
+      {"buffers", {{{"uri", "grid.bin"}, {"byteLength", positionBytes + indexBytes}}}},
+      {"bufferViews",
+       {{{"buffer", 0}, {"byteLength", positionBytes}},
+        {{"buffer", 0}, {"byteOffset", positionBytes}, {"byteLength", indexBytes}}}},
+      {"accessors",
+       {{{"bufferView", 0}, {"componentType", 5126}, {"count", positions.size() / 3}, {"type", "VEC3"}},
+        {{"bufferView", 1}, {"componentType", 5125}, {"count", indices.size()}, {"type", "SCALAR"}}}},
+      {"materials", {{{"pbrMetallicRoughness", {{"baseColorFactor", {0.5, 0.5, 0.5, 1}}}}}}},
+      {"meshes", {{{"primitives", {{{"attributes", {{"POSITION", 0}}}, {"indices", 1}, {"material", 0}}}}}}},
+  };
+  nlohmann::json nodes = nlohmann::json::array(), roots = nlohmann::json::array();
+  for (int k = 0; k < instances; ++k) {
+    nodes.push_back({{"mesh", 0}, {"translation", {1.1 * (k % 8), 0.3 * (k / 64), 1.1 * ((k / 8) % 8)}}});
+    roots.push_back(k);
+  }
+  gltf["nodes"] = nodes;
+  gltf["scenes"] = {{{"nodes", roots}}};
+  std::ofstream(dir + "/grid.gltf") << gltf.dump();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string scene;
+  int grid = 1024, instances = 1;
+  for (int a = 1; a < argc; ++a) {
+    if (!std::strcmp(argv[a], "--grid") && a + 1 < argc) grid = std::atoi(argv[++a]);
+    else if (!std::strcmp(argv[a], "--instances") && a + 1 < argc) instances = std::atoi(argv[++a]);
+    else scene = argv[a];
+  }
+  if (grid <= 0 || instances <= 0) {
+    std::cerr << "bench_scene: --grid and --instances must be positive\n";
+    return 2;
+  }
+  std::filesystem::path generated;
+  if (scene.empty()) {
+    generated = std::filesystem::temp_directory_path() / ("bench-scene-" + std::to_string(getpid()));
+    std::filesystem::create_directories(generated);
+    const pid_t child = fork();
+    if (child == 0) {
+      writeGrid(generated.string(), grid, instances);
+      _exit(0);
+    }
+    int status = 0;
+    waitpid(child, &status, 0);
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+      std::cerr << "bench_scene: generating the grid failed\n";
+      return 1;
+    }
+    scene = (generated / "grid.gltf").string();
+  }
+
+  const double before = peakMiB();
+  auto start = std::chrono::steady_clock::now();
+  const baker::Scene loaded = baker::loadGltf(scene);
+  const double loadSeconds = secondsSince(start);
+  const double afterLoad = peakMiB();
+  start = std::chrono::steady_clock::now();
+  const baker::RayTracer tracer(loaded);
+  const double bvhSeconds = secondsSince(start);
+  const double afterBvh = peakMiB();
+
+  const double triangles = double(loaded.triangleCount());
+  std::uint64_t unique = 0;
+  for (const baker::Mesh& m : loaded.meshes) unique += m.triangleCount();
+  std::cout << "scene          " << scene << "\n"
+            << "triangles      " << std::uint64_t(triangles) << " in the world, " << unique << " unique, "
+            << loaded.instances.size() << " instances, " << tracer.instancedMeshes() << " instanced meshes\n"
+            << "load           " << loadSeconds << " s, " << unique / loadSeconds * 1e-6 << " M unique triangles/s\n"
+            << "bvh            " << bvhSeconds << " s, " << unique / bvhSeconds * 1e-6 << " M unique triangles/s, "
+            << triangles / bvhSeconds * 1e-6 << " M world triangles/s\n"
+            << "peak memory    " << before << " MiB before loading, " << afterLoad << " MiB after loading, " << afterBvh
+            << " MiB after the BVH\n";
+  if (!generated.empty()) std::filesystem::remove_all(generated);
+  return 0;
+}

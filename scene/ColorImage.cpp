@@ -1,0 +1,102 @@
+#include "scene/ColorImage.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+
+namespace baker {
+namespace {
+
+const std::array<float, 256>& srgbTable() {
+  static const std::array<float, 256> table = [] {
+    std::array<float, 256> t{};
+    for (int i = 0; i < 256; ++i) t[i] = srgbToLinear(float(i) / 255.0f);
+    return t;
+  }();
+  return table;
+}
+
+// Brings a texture coordinate into one period (or onto the edge for clamping) before it is
+// scaled to texels, so that huge or negative coordinates cannot overflow a texel index.
+double reduce(double t, Wrap wrap) {
+  switch (wrap) {
+    case Wrap::Repeat: return t - std::floor(t);
+    case Wrap::MirroredRepeat: return t - 2.0 * std::floor(t / 2.0);
+    case Wrap::ClampToEdge: break;
+  }
+  return std::clamp(t, 0.0, 1.0);
+}
+
+// The texel a (possibly out-of-range) index reads under `wrap`; the reduced coordinate keeps
+// the index within one neighbour of a single (mirrored: double) period.
+int wrapIndex(int i, int n, Wrap wrap) {
+  switch (wrap) {
+    case Wrap::Repeat: {
+      const int m = i % n;
+      return m < 0 ? m + n : m;
+    }
+    case Wrap::MirroredRepeat: {
+      int m = i % (2 * n);
+      if (m < 0) m += 2 * n;
+      return m < n ? m : 2 * n - 1 - m;
+    }
+    case Wrap::ClampToEdge: break;
+  }
+  return std::clamp(i, 0, n - 1);
+}
+
+}  // namespace
+
+float srgbToLinear(float encoded) {
+  return encoded <= 0.04045f ? encoded / 12.92f : std::pow((encoded + 0.055f) / 1.055f, 2.4f);
+}
+
+ColorImage ColorImage::fromBytes(int width, int height, std::vector<std::uint8_t> rgba) {
+  if (width <= 0 || height <= 0 || rgba.size() != std::size_t(width) * height * 4)
+    throw std::invalid_argument("ColorImage: pixel data does not match the image size");
+  ColorImage image;
+  image.width_ = width;
+  image.height_ = height;
+  image.bytes_ = std::move(rgba);
+  return image;
+}
+
+ColorImage ColorImage::fromLinear(int width, int height, std::vector<float> rgba) {
+  if (width <= 0 || height <= 0 || rgba.size() != std::size_t(width) * height * 4)
+    throw std::invalid_argument("ColorImage: pixel data does not match the image size");
+  ColorImage image;
+  image.width_ = width;
+  image.height_ = height;
+  image.linear_ = std::move(rgba);
+  return image;
+}
+
+Eigen::Vector4f ColorImage::texel(int x, int y) const {
+  const std::size_t k = (std::size_t(y) * width_ + x) * 4;
+  if (!bytes_.empty()) {
+    const std::array<float, 256>& srgb = srgbTable();
+    return {srgb[bytes_[k]], srgb[bytes_[k + 1]], srgb[bytes_[k + 2]], float(bytes_[k + 3]) / 255.0f};
+  }
+  return {linear_[k], linear_[k + 1], linear_[k + 2], linear_[k + 3]};
+}
+
+Eigen::Vector4f ColorImage::sample(const Eigen::Vector2f& uv, const SamplerState& sampler) const {
+  const double s = reduce(std::isfinite(uv.x()) ? uv.x() : 0.0, sampler.wrapS) * width_;
+  const double t = reduce(std::isfinite(uv.y()) ? uv.y() : 0.0, sampler.wrapT) * height_;
+  if (sampler.nearest) {
+    const int x = wrapIndex(int(std::floor(s)), width_, sampler.wrapS);
+    const int y = wrapIndex(int(std::floor(t)), height_, sampler.wrapT);
+    return texel(x, y);
+  }
+  // Texel centres sit at half-integer positions, so bilinear weights come from s − ½.
+  const double px = s - 0.5, py = t - 0.5;
+  const double fx0 = std::floor(px), fy0 = std::floor(py);
+  const float ax = float(px - fx0), ay = float(py - fy0);
+  const int x0 = wrapIndex(int(fx0), width_, sampler.wrapS), x1 = wrapIndex(int(fx0) + 1, width_, sampler.wrapS);
+  const int y0 = wrapIndex(int(fy0), height_, sampler.wrapT), y1 = wrapIndex(int(fy0) + 1, height_, sampler.wrapT);
+  return (1.0f - ay) * ((1.0f - ax) * texel(x0, y0) + ax * texel(x1, y0)) +
+         ay * ((1.0f - ax) * texel(x0, y1) + ax * texel(x1, y1));
+}
+
+}  // namespace baker

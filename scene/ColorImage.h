@@ -1,0 +1,52 @@
+#pragma once
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+namespace baker {
+
+// glTF sampler wrap modes, per texture axis.
+enum class Wrap { Repeat, ClampToEdge, MirroredRepeat };
+
+// How a texture is read. There are no mipmaps: a bake looks textures up at ray hits, which
+// have no screen-space footprint, so minFilter has nothing to choose and only magFilter counts
+// (NEAREST picks the texel containing the point, anything else is bilinear).
+struct SamplerState {
+  Wrap wrapS = Wrap::Repeat;
+  Wrap wrapT = Wrap::Repeat;
+  bool nearest = false;
+};
+
+// A decoded colour texture (base colour or emissive): RGB sRGB-encoded and alpha linear, as
+// glTF stores them. Lookups return linear RGBA. Row 0 is the top of the image, which is where
+// glTF's v = 0 lies, so uv (0, 0) is the top-left corner of texel (0, 0).
+//
+// 8-bit images keep their bytes (a quarter of the memory of floats; the sRGB curve is a table
+// lookup); deeper images are decoded to linear floats once.
+class ColorImage {
+ public:
+  ColorImage() = default;
+  static ColorImage fromBytes(int width, int height, std::vector<std::uint8_t> rgba);
+  static ColorImage fromLinear(int width, int height, std::vector<float> rgba);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  std::size_t memoryBytes() const { return bytes_.size() + linear_.size() * sizeof(float); }
+
+  // Linear RGBA of texel (x, y), both in range.
+  Eigen::Vector4f texel(int x, int y) const;
+  // Linear RGBA at glTF texture coordinates `uv`, wrapped and filtered as `sampler` says.
+  // Non-finite coordinates read as 0.
+  Eigen::Vector4f sample(const Eigen::Vector2f& uv, const SamplerState& sampler) const;
+
+ private:
+  int width_ = 0;
+  int height_ = 0;
+  std::vector<std::uint8_t> bytes_;
+  std::vector<float> linear_;
+};
+
+// The exact sRGB transfer curve, encoded value in [0, 1] to linear.
+float srgbToLinear(float encoded);
+
+}  // namespace baker

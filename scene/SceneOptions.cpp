@@ -1,0 +1,76 @@
+#include "scene/SceneOptions.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "common/Error.h"
+#include "formats/RgbImage.h"
+
+namespace baker {
+namespace {
+
+Eigen::Vector3f parseSky(const std::string& text) {
+  const InputError bad(fmt::format("--sky must be three finite non-negative numbers r,g,b, got \"{}\"", text));
+  std::vector<std::string> parts(1);
+  for (char c : text) {
+    if (c == ',') parts.emplace_back();
+    else parts.back() += c;
+  }
+  if (parts.size() != 3) throw bad;
+  Eigen::Vector3f rgb;
+  for (int c = 0; c < 3; ++c) {
+    std::size_t used = 0;
+    try {
+      rgb[c] = std::stof(parts[c], &used);
+    } catch (const std::exception&) {
+      throw bad;
+    }
+    if (used != parts[c].size() || !std::isfinite(rgb[c]) || rgb[c] < 0.0f) throw bad;
+  }
+  return rgb;
+}
+
+}  // namespace
+
+void addSceneOptions(CLI::App& app, SceneOptions& options) {
+  const CLI::Validator sceneIndex(
+      [](std::string& value) {
+        return !value.empty() && value.find_first_not_of("0123456789") == std::string::npos
+                   ? std::string()
+                   : "must be a scene index (0, 1, ...), got " + value;
+      },
+      "INDEX");
+  app.add_option("--scene", options.scene, "glTF scene to load; default: the file's default scene")->check(sceneIndex);
+  app.add_option("--env", options.environmentMap,
+                 "lat-long environment map (.hdr/.exr; +Y up, image centre along +X, u = 0.75 along +Z)");
+  app.add_option("--env-intensity", options.environmentIntensity, "multiplier on the environment map")
+      ->capture_default_str();
+  app.add_option("--env-rotation", options.environmentRotation,
+                 "rotation of the environment map about +Y in degrees (right-handed)")
+      ->capture_default_str();
+  app.add_option("--sky", options.sky, "constant sky radiance r,g,b instead of a map");
+}
+
+Environment environmentFromOptions(const SceneOptions& options, std::vector<std::string>& warnings) {
+  if (!std::isfinite(options.environmentIntensity) || options.environmentIntensity < 0.0)
+    throw InputError(fmt::format("--env-intensity must be a finite non-negative number, got {}",
+                                 options.environmentIntensity));
+  if (!std::isfinite(options.environmentRotation))
+    throw InputError(fmt::format("--env-rotation must be a finite number of degrees, got {}",
+                                 options.environmentRotation));
+  if (!options.environmentMap.empty() && !options.sky.empty())
+    throw InputError("--env and --sky both describe the environment; give one of them");
+  if (!options.sky.empty()) return Environment::constant(parseSky(options.sky));
+  if (options.environmentMap.empty()) return Environment();
+  RgbImage image = readRgbImage(options.environmentMap);
+  Environment env = Environment::latLong(image.width, image.height, std::move(image.pixels),
+                                         float(options.environmentIntensity), float(options.environmentRotation),
+                                         options.environmentMap);
+  if (env.sanitizedTexels() > 0)
+    warnings.push_back(fmt::format("{}: {} texel(s) were negative or not finite and read as 0", options.environmentMap,
+                                   env.sanitizedTexels()));
+  return env;
+}
+
+}  // namespace baker
