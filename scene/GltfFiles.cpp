@@ -96,6 +96,15 @@ void checkArray(const nlohmann::json& root, const char* key, const std::string& 
     if (!why.empty())
       throw InputError(fmt::format("{}: {}[{}].uri \"{}\" {}; only files in the scene's folder or below are read",
                                    path, key, i, uri->get<std::string>(), why));
+    // A missing buffer stops the load (a missing image only loses its texture: a warning later).
+    if (std::string(key) == "buffers" && uri->get<std::string>().rfind("data:", 0) != 0) {
+      const std::filesystem::path file =
+          std::filesystem::path(path).parent_path() / percentDecoded(uri->get<std::string>());
+      std::error_code ec;
+      if (!std::filesystem::is_regular_file(file, ec))
+        throw InputError(fmt::format("{}: {}[{}].uri \"{}\": no such file beside the scene", path, key, i,
+                                     uri->get<std::string>()));
+    }
   }
 }
 
@@ -113,8 +122,11 @@ std::string unexpanded(const std::string& path, void*) { return path; }
 
 }  // namespace
 
-void checkExternalUris(const std::string& path) {
-  const nlohmann::json root = nlohmann::json::parse(jsonText(path), nullptr, false);
+nlohmann::json readGltfJson(const std::string& path) {
+  return nlohmann::json::parse(jsonText(path), nullptr, false);
+}
+
+void checkExternalUris(const nlohmann::json& root, const std::string& path) {
   if (root.is_discarded() || !root.is_object()) return;
   checkArray(root, "buffers", path);
   checkArray(root, "images", path);

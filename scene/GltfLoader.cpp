@@ -13,6 +13,7 @@
 #include "common/Error.h"
 #include "scene/GltfAccessor.h"
 #include "scene/GltfFiles.h"
+#include "scene/GltfReferences.h"
 #include "scene/GltfImages.h"
 #include "scene/GltfLights.h"
 #include "scene/GltfMaterials.h"
@@ -310,7 +311,9 @@ Scene loadGltf(const std::string& path, const SceneOptions& options) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
     throw InputError(fmt::format("{}: scene file does not exist or is not a regular file", path));
-  checkExternalUris(path);
+  const nlohmann::json json = readGltfJson(path);
+  checkExternalUris(json, path);
+  checkReferencesTinygltfRejects(json, path);
   tinygltf::TinyGLTF loader;
   GltfImages images;
   images.install(loader);

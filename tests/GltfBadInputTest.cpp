@@ -112,13 +112,41 @@ TEST_F(GltfBadInput, AccessorAndViewsOutOfRange) {
   GltfBuilder gltf = triangle(test::triangleXY());
   gltf.json()["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 7;
   expectRejected(gltf.write(dir_, "noposition"), {"meshes[0].primitives[0].attributes.POSITION refers to accessor 7"});
-  // tinygltf itself checks index accessors, without naming the primitive.
-  GltfBuilder indices = triangle(test::triangleXY());
-  indices.json()["meshes"][0]["primitives"][0]["indices"] = 7;
-  expectRejected(indices.write(dir_, "noindices"), {"indices accessor out of bounds"});
   GltfBuilder view = triangle(test::triangleXY());
   view.json()["bufferViews"][0]["byteOffset"] = 1000;
   expectRejected(view.write(dir_, "view"), {"bufferViews[0]", "lies outside buffers[0]"});
+}
+
+// Cases tinygltf itself rejects before the loader sees the model: the pre-check on the JSON
+// names the glTF path instead of tinygltf's bare "primitive indices accessor out of bounds".
+TEST_F(GltfBadInput, ReferencesTinygltfWouldRejectWithoutAPath) {
+  GltfBuilder indices = triangle(test::triangleXY());
+  indices.json()["meshes"][0]["primitives"][0]["indices"] = 7;
+  expectRejected(indices.write(dir_, "indices"), {"meshes[0].primitives[0].indices refers to accessor 7"});
+
+  GltfBuilder noView = triangle(test::triangleXY());
+  noView.json()["meshes"][0]["primitives"][0]["indices"] = 0;
+  noView.json()["accessors"][0].erase("bufferView");
+  expectRejected(noView.write(dir_, "noview"), {"accessors[0].bufferView", "meshes[0].primitives[0].indices"});
+
+  GltfBuilder count = triangle(test::triangleXY());
+  count.json()["accessors"][0].erase("count");
+  expectRejected(count.write(dir_, "count"), {"accessors[0].count is required"});
+
+  GltfBuilder spot = triangle(test::triangleXY());
+  spot.json()["extensionsUsed"] = {"KHR_lights_punctual"};
+  spot.json()["extensions"]["KHR_lights_punctual"]["lights"] = {{{"type", "spot"}}};
+  expectRejected(spot.write(dir_, "spot"), {"extensions.KHR_lights_punctual.lights[0]", "\"spot\""});
+
+  GltfBuilder camera = triangle(test::triangleXY());
+  camera.json()["cameras"] = {{{"type", "perspective"}}};
+  expectRejected(camera.write(dir_, "camera"), {"cameras[0]", "\"perspective\""});
+}
+
+TEST_F(GltfBadInput, MissingBufferFileNamesTheBufferUri) {
+  const std::string path = triangle(test::triangleXY()).write(dir_, "external", true);
+  std::filesystem::remove(dir_ + "/external.bin");
+  expectRejected(path, {"buffers[0].uri \"external.bin\"", "no such file"});
 }
 
 TEST_F(GltfBadInput, BadMaterialValues) {
