@@ -39,6 +39,11 @@ RgbImage readRgbImage(const std::string& path) {
     throw InputError(fmt::format("{}: expected RGB or grey, found {} channels", path, channels));
   if (spec.width <= 0 || spec.height <= 0 || spec.depth != 1)
     throw InputError(fmt::format("{}: not a 2D image ({} × {} × {})", path, spec.width, spec.height, spec.depth));
+  // The header alone decides the allocation: a few bytes can claim 100000² texels. 16k × 8k
+  // is beyond any environment map or light probe in use.
+  constexpr double kMaxTexels = 16384.0 * 8192.0;
+  if (double(spec.width) * spec.height > kMaxTexels)
+    throw InputError(fmt::format("{}: {} × {} texels exceed the limit of 16384 × 8192", path, spec.width, spec.height));
   std::vector<float> source(std::size_t(spec.width) * spec.height * std::min(channels, 3));
   if (!in->read_image(0, 0, 0, std::min(channels, 3), OIIO::TypeDesc::FLOAT, source.data()))
     throw InputError(fmt::format("{}: cannot read the image: {}", path, oneLine(in->geterror())));

@@ -123,7 +123,15 @@ std::string unexpanded(const std::string& path, void*) { return path; }
 }  // namespace
 
 nlohmann::json readGltfJson(const std::string& path) {
-  return nlohmann::json::parse(jsonText(path), nullptr, false);
+  // tinygltf converts JSON recursively and overflows the stack on deep nesting (a few hundred
+  // kilobytes of brackets suffice); glTF itself never needs more than a few levels.
+  constexpr int kMaxDepth = 256;
+  auto limitDepth = [&](int depth, nlohmann::json::parse_event_t, nlohmann::json&) {
+    if (depth > kMaxDepth)
+      throw InputError(fmt::format("{}: JSON nests deeper than {} levels; refusing to load it", path, kMaxDepth));
+    return true;
+  };
+  return nlohmann::json::parse(jsonText(path), limitDepth, false);
 }
 
 void checkExternalUris(const nlohmann::json& root, const std::string& path) {

@@ -10,6 +10,9 @@
 namespace baker {
 namespace {
 
+// glTF names TEXCOORD_n sets; real assets use a handful, engines at most eight.
+constexpr int kMaxTexcoordSets = 32;
+
 Wrap wrapMode(int value, const std::string& where) {
   switch (value) {
     case TINYGLTF_TEXTURE_WRAP_REPEAT: return Wrap::Repeat;
@@ -123,7 +126,10 @@ class MaterialReader {
     slot.texCoord = info.texCoord;
     const auto transform = info.extensions.find("KHR_texture_transform");
     if (transform != info.extensions.end()) readTransform(transform->second, path + ".extensions.KHR_texture_transform", slot);
-    if (slot.texCoord < 0) fail(path + ".texCoord", fmt::format("{} is negative", slot.texCoord));
+    // Every set a material names becomes an array per mesh: a bound keeps a forged index
+    // from allocating gigabytes.
+    if (slot.texCoord < 0 || slot.texCoord >= kMaxTexcoordSets)
+      fail(path + ".texCoord", fmt::format("{} is outside 0..{}", slot.texCoord, kMaxTexcoordSets - 1));
     slot.image = decodedImage(texture.source);
     if (slot.image < 0) return TextureSlot{};
     out_.texcoordSets.insert(slot.texCoord);

@@ -18,6 +18,7 @@
 #include "bake/LatLongEnvironment.h"
 #include "cli/EnvCommand.h"
 #include "common/Error.h"
+#include "formats/RgbImage.h"
 #include "tests/TestData.h"
 
 namespace baker {
@@ -184,6 +185,19 @@ TEST(AmbientDiceIrradianceOnProbes, MatchTheVerifiedTableWithinOnePercent) {
       const double expected = std::string(probe) == "ennis" ? e.ennis : e.grace;
       EXPECT_NEAR(fits[0].rmse, expected, 0.01 * expected) << probe << " " << e.basis;
     }
+  }
+}
+
+// A 60-byte Radiance header may claim 20000 × 20000 texels; the reader must refuse it before
+// allocating the 4.8 GB it implies.
+TEST(RgbImage, RefusesAClaimedSizeBeyondTheLimitBeforeReading) {
+  const std::string path = test::makeTempDir("huge-hdr") + "/huge.hdr";
+  std::ofstream(path, std::ios::binary) << "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 20000 +X 20000\n\x02\x02N ";
+  try {
+    readRgbImage(path);
+    FAIL() << "a 20000 × 20000 image must be refused";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("exceed the limit"), std::string::npos) << e.what();
   }
 }
 

@@ -149,6 +149,25 @@ TEST_F(GltfBadInput, MissingBufferFileNamesTheBufferUri) {
   expectRejected(path, {"buffers[0].uri \"external.bin\"", "no such file"});
 }
 
+// tinygltf converts JSON recursively: 20000 nested brackets overflowed its stack.
+TEST_F(GltfBadInput, DeeplyNestedJsonIsRefusedNotACrash) {
+  const std::string path = dir_ + "/deep.gltf";
+  std::ofstream(path) << "{\"asset\":{\"version\":\"2.0\"},\"extras\":" << std::string(20000, '[')
+                      << std::string(20000, ']') << "}";
+  expectRejected(path, {"nests deeper than"});
+}
+
+// Each texture coordinate set a material names becomes an array per mesh.
+TEST_F(GltfBadInput, TexcoordSetIsBounded) {
+  GltfBuilder gltf;
+  const int texture = gltf.texture(test::encodePng(1, 1, 3, {255, 255, 255}));
+  const int material =
+      gltf.material({{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", texture}, {"texCoord", 2147483647}}}}}});
+  gltf.node({{"mesh", test::squareMesh(gltf, 1.0f, material)}});
+  expectRejected(gltf.write(dir_, "texcoord"), {"materials[0].pbrMetallicRoughness.baseColorTexture.texCoord",
+                                                "outside 0..31"});
+}
+
 TEST_F(GltfBadInput, BadMaterialValues) {
   GltfBuilder gltf = triangle(test::triangleXY());
   gltf.json()["meshes"][0]["primitives"][0]["material"] = gltf.material({{"alphaMode", "CUTOUT"}});
