@@ -13,10 +13,10 @@ namespace baker {
 namespace {
 
 // Accessors of more values (elements × components) than this are refused before anything is
-// allocated for them: 256M values (1 GiB as floats) is beyond anything a probe bake is meant
-// for, and a corrupt count must not be able to exhaust memory, even for an accessor without a
-// bufferView (all zeros, nothing in the file backs its count).
-constexpr std::size_t kMaxValues = std::size_t(1) << 28;
+// allocated for them: 64M values (256 MiB as floats; 22M vertices or triangles) is beyond
+// anything a probe bake is meant for, and a corrupt count must not be able to exhaust memory,
+// even for an accessor without a bufferView (all zeros, nothing in the file backs its count).
+constexpr std::size_t kMaxValues = std::size_t(1) << 26;
 
 int componentSize(int type) {
   switch (type) {

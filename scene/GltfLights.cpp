@@ -58,12 +58,14 @@ std::optional<PunctualLight> readLight(const tinygltf::Model& model, int node, c
     light.outerConeAngle = float(outer);
   }
 
+  light.position = world.topRightCorner<3, 1>().cast<float>();
+  // A point light has no direction, so only spot and directional lights need an axis that
+  // survives the node's transform.
   const Eigen::Vector3d axis = world.topLeftCorner<3, 3>() * Eigen::Vector3d(0.0, 0.0, -1.0);
-  if (!(axis.norm() > 0.0))
+  if (light.type != PunctualLight::Type::Point && !(axis.norm() > 0.0))
     throw InputError(fmt::format("{}: nodes[{}] places light {} with a transform that collapses its direction", file,
                                  node, index));
-  light.position = world.topRightCorner<3, 1>().cast<float>();
-  light.direction = axis.normalized().cast<float>();
+  light.direction = axis.norm() > 0.0 ? axis.normalized().cast<float>() : Eigen::Vector3f(0.0f, 0.0f, -1.0f);
   return light;
 }
 

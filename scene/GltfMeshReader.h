@@ -26,8 +26,8 @@ class GltfMeshReader {
  public:
   // Geometry in the whole scene beyond these many vertices or triangles is refused before it
   // is read: bounded memory whatever the file's counts say.
-  static constexpr std::size_t kMaxVertices = std::size_t(1) << 28;
-  static constexpr std::size_t kMaxTriangles = std::size_t(1) << 28;
+  static constexpr std::size_t kMaxVertices = std::size_t(1) << 26;
+  static constexpr std::size_t kMaxTriangles = std::size_t(1) << 26;
 
   GltfMeshReader(const tinygltf::Model& model, const std::string& file, const GltfMaterials& materials);
 

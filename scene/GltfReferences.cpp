@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <cstdint>
 #include <utility>
 #include <vector>
 
@@ -92,11 +93,68 @@ void checkRequiredProperties(const nlohmann::json& root, const std::string& path
   }
 }
 
+// Fixed-length number arrays: tinygltf drops a wrong-length baseColorFactor and reads a short
+// matrix as identity, silently.
+void checkFixedLengthArrays(const nlohmann::json& root, const std::string& path) {
+  auto require = [&](const nlohmann::json& object, const char* key, std::size_t length, const std::string& where) {
+    if (!object.is_object() || !object.contains(key)) return;
+    const nlohmann::json& value = object[key];
+    bool ok = value.is_array() && value.size() == length;
+    for (std::size_t i = 0; ok && i < length; ++i) ok = value[i].is_number();
+    if (!ok) throw InputError(fmt::format("{}: {}.{} must be an array of {} numbers", path, where, key, length));
+  };
+  if (root.contains("nodes") && root["nodes"].is_array())
+    for (std::size_t i = 0; i < root["nodes"].size(); ++i) {
+      const std::string where = fmt::format("nodes[{}]", i);
+      require(root["nodes"][i], "matrix", 16, where);
+      require(root["nodes"][i], "translation", 3, where);
+      require(root["nodes"][i], "rotation", 4, where);
+      require(root["nodes"][i], "scale", 3, where);
+    }
+  if (root.contains("materials") && root["materials"].is_array())
+    for (std::size_t i = 0; i < root["materials"].size(); ++i) {
+      const nlohmann::json& material = root["materials"][i];
+      require(material, "emissiveFactor", 3, fmt::format("materials[{}]", i));
+      if (material.is_object() && material.contains("pbrMetallicRoughness"))
+        require(material["pbrMetallicRoughness"], "baseColorFactor", 4,
+                fmt::format("materials[{}].pbrMetallicRoughness", i));
+    }
+}
+
+// tinygltf requires a data: URI to hold exactly byteLength bytes and reports a mismatch with
+// the whole URI in its message and no buffer index.
+void checkDataUriLengths(const nlohmann::json& root, const std::string& path) {
+  if (!root.contains("buffers") || !root["buffers"].is_array()) return;
+  for (std::size_t i = 0; i < root["buffers"].size(); ++i) {
+    const nlohmann::json& buffer = root["buffers"][i];
+    if (!buffer.is_object() || !buffer.contains("uri") || !buffer["uri"].is_string()) continue;
+    if (!buffer.contains("byteLength") || !buffer["byteLength"].is_number_unsigned()) continue;
+    const std::string& uri = buffer["uri"].get_ref<const std::string&>();
+    const std::size_t comma = uri.find(',');
+    if (uri.rfind("data:", 0) != 0 || comma == std::string::npos || uri.find(";base64,") != comma - 7) continue;
+    std::size_t encoded = uri.size() - comma - 1;
+    std::size_t padding = 0;
+    while (padding < 2 && encoded > padding && uri[uri.size() - 1 - padding] == '=') ++padding;
+    const std::size_t decoded = encoded / 4 * 3 - padding;
+    const std::uint64_t declared = buffer["byteLength"].get<std::uint64_t>();
+    if (declared != decoded)
+      throw InputError(fmt::format("{}: buffers[{}].byteLength is {}, but its data: URI holds {} bytes", path, i,
+                                   declared, decoded));
+  }
+}
+
 }  // namespace
 
 void checkReferencesTinygltfRejects(const nlohmann::json& root, const std::string& path) {
   if (root.is_discarded() || !root.is_object()) return;
+  if (root.contains("asset") && root["asset"].is_object() && root["asset"].contains("version")) {
+    const nlohmann::json& version = root["asset"]["version"];
+    if (!version.is_string() || version.get<std::string>().rfind("2.", 0) != 0)
+      throw InputError(fmt::format("{}: asset.version is {}; only glTF 2.x is read", path, version.dump()));
+  }
   checkRequiredProperties(root, path);
+  checkFixedLengthArrays(root, path);
+  checkDataUriLengths(root, path);
   checkPrimitiveIndices(root, path);
   if (root.contains("cameras"))
     checkTypedObjects(root["cameras"], "cameras", path, {"perspective", "orthographic"});

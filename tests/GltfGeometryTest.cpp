@@ -61,6 +61,22 @@ TEST_F(GltfGeometry, MeshUsedByThreeNodesIsReadOnceAndInstanced) {
   }
 }
 
+// UNSIGNED_BYTE and UNSIGNED_SHORT indices (UNSIGNED_INT is what the builder writes elsewhere).
+TEST_F(GltfGeometry, EveryIndexTypeReadsTheSameTriangles) {
+  for (int componentType : {5121, 5123, 5125}) {
+    GltfBuilder gltf;
+    const int size = componentType == 5121 ? 1 : componentType == 5123 ? 2 : 4;
+    std::vector<std::uint8_t> bytes;
+    for (std::uint32_t index : {2u, 1u, 0u})  // reversed: the order must survive
+      for (int b = 0; b < size; ++b) bytes.push_back(std::uint8_t(index >> (8 * b)));
+    const int indices = gltf.raw(bytes, componentType, "SCALAR", 3, false);
+    gltf.node({{"mesh", gltf.mesh({{"POSITION", gltf.floats(test::triangleXY(), "VEC3")}}, indices)}});
+    const Scene scene = load(gltf);
+    ASSERT_EQ(scene.triangleCount(), 1u) << "componentType " << componentType;
+    EXPECT_EQ(scene.meshes[0].triangles[0], Eigen::Vector3i(2, 1, 0)) << "componentType " << componentType;
+  }
+}
+
 TEST_F(GltfGeometry, MatrixTrsAndHierarchyCompose) {
   GltfBuilder gltf;
   const int mesh = gltf.mesh({{"POSITION", gltf.floats(test::triangleXY(), "VEC3")}});
