@@ -2,8 +2,9 @@
 #include <cstdint>
 
 #include "bake/Basis.h"
-#include "bake/GramOperators.h"
+#include "bake/ProbeBaker.h"
 #include "bake/ProbeGrid.h"
+#include "bake/Transport.h"
 #include "bake/Volume.h"
 #include "scene/RayTracer.h"
 #include "scene/Scene.h"
@@ -17,24 +18,20 @@ struct BakeStats {
   std::int64_t probes = 0;
   std::int64_t bricks = 0;
   int raysPerProbe = 0;
-  std::int64_t raysTraced = 0;
+  RayCounts rays;
+  std::int64_t validProbes = 0, relocatedProbes = 0, invalidProbes = 0;
   double conditionNumber = 0.0;  // worst of the basis's Gram matrices
   int shOrder = 0;               // SH order the samples are fitted with on their way to the basis
   double operatorSeconds = 0.0;  // building the projection operators
   double traceSeconds = 0.0;     // tracing and projecting every brick
 };
 
-// How ray samples become coefficients beyond the default linear projection.
-struct ProjectionOptions {
-  BandWindow window;         // Hann window on the SH bands (paper eq. 8) against ringing
-  bool nonNegative = false;  // coefficients ≥ 0 by a per-probe constrained solve (NonNegativeProjection)
-};
-
-// Traces `rays` spherical Fibonacci directions from every probe of `grid` and projects the
-// irradiance they imply (E(n) = ∫ L max(0, n·ω) dω, full irradiance, not E/π) into `basis`:
-// one matrix product per brick and channel group. The result does not depend on the number of
-// threads.
-Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basis, const ProbeGrid& grid, int rays,
-                  BakeStats* stats, const ProjectionOptions& options = {});
+// Bakes every probe of `grid`: each traces settings.rays directions (one path each, see
+// PathIntegrator) and stores the irradiance they imply, E(n) = ∫ L max(0, n·ω) dω (full
+// irradiance, not E/π), in `basis`, plus its sky visibility. Probes inside geometry are moved
+// out or, failing that, filled from valid neighbours (ProbeValidity). The result depends on
+// settings.transport.seed and not on the number of threads.
+Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basis, const ProbeGrid& grid,
+                  const BakeSettings& settings, BakeStats* stats);
 
 }  // namespace baker

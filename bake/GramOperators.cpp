@@ -128,7 +128,11 @@ Eigen::MatrixXd GramOperators::irradianceFromSamples(const DirectionSet& samples
                                                      const BandWindow& window) const {
   const SphericalHarmonics sh(shOrder);
   const ProjectionOperator fit = leastSquaresProjection(sh, samples, label_ + " (SH fit of the samples)");
-  return inverse_ * shMoments(shOrder) * bandFactors(shOrder, window).asDiagonal() * fit.matrix;
+  return irradianceFromSh(shOrder, window) * fit.matrix;
+}
+
+Eigen::MatrixXd GramOperators::irradianceFromSh(int order, const BandWindow& window) const {
+  return inverse_ * shMoments(order) * bandFactors(order, window).asDiagonal();
 }
 
 ShReproduction GramOperators::shReproduction(int maxOrder) const {

@@ -68,6 +68,9 @@ class GramOperators {
   // passes resolvableShOrder(samples).
   Eigen::MatrixXd irradianceFromSamples(const DirectionSet& samples, int shOrder, const BandWindow& window = {}) const;
 
+  // SH coefficients of radiance up to `order` → irradiance coefficients: G⁻¹ B_sh C.
+  Eigen::MatrixXd irradianceFromSh(int order, const BandWindow& window = {}) const;
+
   ShReproduction shReproduction(int maxOrder) const;
 
  private:

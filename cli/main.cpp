@@ -4,11 +4,13 @@
 #include "cli/BasesCommand.h"
 #include "cli/EnvCommand.h"
 #include "cli/InfoCommand.h"
+#include "cli/ProbeCommand.h"
 
 // `baker COMMAND ...` runs a named command; anything else (`baker SCENE ...`) bakes.
 int main(int argc, char** argv) {
   if (argc > 1 && std::strcmp(argv[1], "bases") == 0) return baker::runBasesCommand(argc - 1, argv + 1);
   if (argc > 1 && std::strcmp(argv[1], "env") == 0) return baker::runEnvCommand(argc - 1, argv + 1);
   if (argc > 1 && std::strcmp(argv[1], "info") == 0) return baker::runInfoCommand(argc - 1, argv + 1);
+  if (argc > 1 && std::strcmp(argv[1], "probe") == 0) return baker::runProbeCommand(argc - 1, argv + 1);
   return baker::runBakeCommand(argc, argv);
 }

@@ -11,11 +11,34 @@
 
 namespace baker {
 
+namespace {
+
+// A grid with one voxel per probe, every voxel active (a constant value is data here, not background).
+template <typename GridType, typename ValueAt>
+typename GridType::Ptr denseGrid(const ProbeGrid& g, const std::string& name, const openvdb::math::Transform& transform,
+                                 ValueAt valueAt) {
+  auto grid = GridType::create(typename GridType::ValueType(0));
+  auto access = grid->getAccessor();
+  for (int k = 0; k < g.dims.z(); ++k)
+    for (int j = 0; j < g.dims.y(); ++j)
+      for (int i = 0; i < g.dims.x(); ++i) access.setValue(openvdb::Coord(i, j, k), valueAt(g.linearIndex(i, j, k)));
+  grid->setName(name);
+  grid->setTransform(transform.copy());
+  return grid;
+}
+
+void requireFinite(const std::vector<float>& values, int perProbe, const char* what) {
+  for (std::size_t i = 0; i < values.size(); ++i)
+    if (!std::isfinite(values[i]))
+      throw std::runtime_error(
+          fmt::format("internal error: probe {} has a non-finite {}; nothing written", i / perProbe, what));
+}
+
+}  // namespace
+
 void writeVdb(const Volume& volume, const Basis& basis, const std::string& path) {
-  for (std::size_t i = 0; i < volume.coefficients.size(); ++i)
-    if (!std::isfinite(volume.coefficients[i]))
-      throw std::runtime_error(fmt::format("internal error: probe {} has a non-finite coefficient; nothing written",
-                                           i / volume.coefficientsPerProbe));
+  requireFinite(volume.coefficients, volume.coefficientsPerProbe, "coefficient");
+  requireFinite(volume.visibility, std::max(1, volume.visibilityPerProbe), "visibility coefficient");
   openvdb::initialize();
   const ProbeGrid& g = volume.grid;
   openvdb::math::Transform::Ptr transform = openvdb::math::Transform::createLinearTransform(g.spacing);
@@ -23,33 +46,30 @@ void writeVdb(const Volume& volume, const Basis& basis, const std::string& path)
 
   openvdb::GridPtrVec grids;
   for (const CoefficientGrid& spec : coefficientGrids(basis)) {
-    openvdb::GridBase::Ptr grid;
     if (spec.isVector) {
-      auto vec = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f));
-      auto access = vec->getAccessor();
-      const int offsets[3] = {basis.coefficientOffset(0), basis.coefficientOffset(1), basis.coefficientOffset(2)};
-      for (int k = 0; k < g.dims.z(); ++k)
-        for (int j = 0; j < g.dims.y(); ++j)
-          for (int i = 0; i < g.dims.x(); ++i) {
-            const float* c = volume.probe(g.linearIndex(i, j, k));
-            access.setValue(openvdb::Coord(i, j, k), openvdb::Vec3s(c[offsets[0] + spec.function],
-                                                                   c[offsets[1] + spec.function],
-                                                                   c[offsets[2] + spec.function]));
-          }
-      grid = vec;
+      const int offsets[3] = {basis.coefficientOffset(0) + spec.function, basis.coefficientOffset(1) + spec.function,
+                              basis.coefficientOffset(2) + spec.function};
+      grids.push_back(denseGrid<openvdb::Vec3SGrid>(g, spec.name, *transform, [&](std::int64_t p) {
+        const float* c = volume.probe(p);
+        return openvdb::Vec3s(c[offsets[0]], c[offsets[1]], c[offsets[2]]);
+      }));
     } else {
-      auto scalar = openvdb::FloatGrid::create(0.0f);
-      auto access = scalar->getAccessor();
       const int offset = basis.coefficientOffset(spec.channel) + spec.function;
-      for (int k = 0; k < g.dims.z(); ++k)
-        for (int j = 0; j < g.dims.y(); ++j)
-          for (int i = 0; i < g.dims.x(); ++i)
-            access.setValue(openvdb::Coord(i, j, k), volume.probe(g.linearIndex(i, j, k))[offset]);
-      grid = scalar;
+      grids.push_back(denseGrid<openvdb::FloatGrid>(g, spec.name, *transform,
+                                                    [&](std::int64_t p) { return volume.probe(p)[offset]; }));
     }
-    grid->setName(spec.name);
-    grid->setTransform(transform->copy());
-    grids.push_back(grid);
+  }
+  for (int f = 0; f < volume.visibilityPerProbe; ++f)
+    grids.push_back(denseGrid<openvdb::FloatGrid>(g, visibilityGridName(f), *transform, [&](std::int64_t p) {
+      return volume.visibility[p * volume.visibilityPerProbe + f];
+    }));
+  if (!volume.states.empty()) {
+    grids.push_back(denseGrid<openvdb::Int32Grid>(g, kProbeStateGrid, *transform,
+                                                  [&](std::int64_t p) { return int(volume.states[p]); }));
+    grids.push_back(denseGrid<openvdb::Vec3SGrid>(g, kProbeOffsetGrid, *transform, [&](std::int64_t p) {
+      const Eigen::Vector3f& o = volume.offsets[p];
+      return openvdb::Vec3s(o.x(), o.y(), o.z());
+    }));
   }
 
   AtomicFile out(path);

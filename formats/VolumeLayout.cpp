@@ -17,4 +17,6 @@ std::vector<CoefficientGrid> coefficientGrids(const Basis& basis) {
   return grids;
 }
 
+std::string visibilityGridName(int function) { return fmt::format("visibility_{:02}", function); }
+
 }  // namespace baker

@@ -19,4 +19,11 @@ struct CoefficientGrid {
 
 std::vector<CoefficientGrid> coefficientGrids(const Basis& basis);
 
+// Sky visibility, function i of channel 0's set: a scalar grid "visibility_NN".
+std::string visibilityGridName(int function);
+// Probe validity (0 inside geometry and filled from neighbours, 1 valid, 2 moved out of
+// geometry) and the world-space offset of each probe from its grid position.
+inline constexpr const char* kProbeStateGrid = "probe_state";
+inline constexpr const char* kProbeOffsetGrid = "probe_offset";
+
 }  // namespace baker

@@ -19,6 +19,21 @@ T required(const openvdb::MetaMap& meta, const std::string& key, const std::stri
   return value->value();
 }
 
+template <typename GridType>
+typename GridType::Ptr typedGrid(openvdb::io::File& file, const std::string& name, const std::string& path) {
+  if (!file.hasGrid(name)) throw InputError(fmt::format("{}: grid '{}' is missing", path, name));
+  auto grid = openvdb::gridPtrCast<GridType>(file.readGrid(name));
+  if (!grid) throw InputError(fmt::format("{}: grid '{}' has the wrong value type", path, name));
+  return grid;
+}
+
+template <typename Visit>
+void forEachProbe(const ProbeGrid& g, Visit visit) {
+  for (int k = 0; k < g.dims.z(); ++k)
+    for (int j = 0; j < g.dims.y(); ++j)
+      for (int i = 0; i < g.dims.x(); ++i) visit(i, j, k, g.linearIndex(i, j, k));
+}
+
 }  // namespace
 
 Volume readVolume(const std::string& path) {
@@ -75,6 +90,37 @@ Volume readVolume(const std::string& path) {
               volume.coefficients[g.linearIndex(i, j, k) * volume.coefficientsPerProbe + offset] =
                   access.getValue(openvdb::Coord(i, j, k));
       }
+    }
+    // Sky visibility and probe validity: every bake writes them; volumes from before they existed have neither.
+    auto visibilityCount = meta->getMetadata<openvdb::Int32Metadata>("baker.visibility_per_probe");
+    volume.visibilityPerProbe = visibilityCount ? visibilityCount->value() : 0;
+    if (volume.visibilityPerProbe != 0 && volume.visibilityPerProbe != basis->functions(0).count())
+      throw InputError(fmt::format("{}: baker.visibility_per_probe is {}, but {} has {} functions in channel 0", path,
+                                   volume.visibilityPerProbe, volume.basisName, basis->functions(0).count()));
+    volume.visibility.assign(std::size_t(g.probeCount()) * volume.visibilityPerProbe, 0.0f);
+    for (int f = 0; f < volume.visibilityPerProbe; ++f) {
+      auto grid = typedGrid<openvdb::FloatGrid>(file, visibilityGridName(f), path);
+      auto access = grid->getConstAccessor();
+      forEachProbe(g, [&](int i, int j, int k, std::int64_t p) {
+        volume.visibility[p * volume.visibilityPerProbe + f] = access.getValue(openvdb::Coord(i, j, k));
+      });
+    }
+    if (file.hasGrid(kProbeStateGrid)) {
+      auto states = typedGrid<openvdb::Int32Grid>(file, kProbeStateGrid, path);
+      auto offsets = typedGrid<openvdb::Vec3SGrid>(file, kProbeOffsetGrid, path);
+      volume.states.assign(g.probeCount(), ProbeState::Valid);
+      volume.offsets.assign(g.probeCount(), Eigen::Vector3f::Zero());
+      auto stateAccess = states->getConstAccessor();
+      auto offsetAccess = offsets->getConstAccessor();
+      forEachProbe(g, [&](int i, int j, int k, std::int64_t p) {
+        const int state = stateAccess.getValue(openvdb::Coord(i, j, k));
+        if (state < 0 || state > 2)
+          throw InputError(fmt::format("{}: grid '{}' holds {} at ({}, {}, {}); states are 0, 1 or 2", path,
+                                       kProbeStateGrid, state, i, j, k));
+        volume.states[p] = ProbeState(state);
+        const openvdb::Vec3s o = offsetAccess.getValue(openvdb::Coord(i, j, k));
+        volume.offsets[p] = Eigen::Vector3f(o.x(), o.y(), o.z());
+      });
     }
     file.close();
     return volume;

@@ -65,7 +65,7 @@ void alphaFilter(const RTCFilterFunctionNArguments* args) {
 
 }  // namespace
 
-RayTracer::RayTracer(const Scene& scene) : scene_(scene) {
+RayTracer::RayTracer(const Scene& scene, bool alphaFilters) : scene_(scene), alphaFilters_(alphaFilters) {
   device_ = rtcNewDevice(nullptr);
   if (!device_) throw std::runtime_error("Embree: cannot create a device");
   rtcScene_ = rtcNewScene(device_);
@@ -132,7 +132,7 @@ void RayTracer::attachMesh(RTCScene target, std::uint32_t meshIndex, const Eigen
     // The Scene outlives the tracer, so Embree reads its triangles in place.
     rtcSetSharedGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, mesh.triangles.data(),
                                std::size_t(first) * sizeof(Eigen::Vector3i), sizeof(Eigen::Vector3i), count);
-    if (part == kAlphaPart) {
+    if (part == kAlphaPart && alphaFilters_) {
       filterTargets_.push_back(std::make_unique<FilterTarget>(FilterTarget{&scene_, meshIndex, first}));
       rtcSetGeometryUserData(geometry, filterTargets_.back().get());
       rtcSetGeometryIntersectFilterFunction(geometry, alphaFilter);
@@ -163,20 +163,26 @@ Hit RayTracer::decode(unsigned geomID, unsigned instID, unsigned primID, float u
 
 void RayTracer::intersect8(const Eigen::Vector3f& origin, const Eigen::Vector3f* directions, int count,
                            Hit* hits) const {
+  Ray rays[8];
+  for (int i = 0; i < count; ++i) rays[i] = Ray{origin, directions[i], 0.0f, std::numeric_limits<float>::infinity()};
+  intersect8(rays, count, hits);
+}
+
+void RayTracer::intersect8(const Ray* rays, int count, Hit* hits) const {
   alignas(32) int valid[8];
   alignas(32) RTCRayHit8 packet;
   for (int i = 0; i < 8; ++i) {
     const bool active = i < count;
     valid[i] = active ? -1 : 0;
-    const Eigen::Vector3f d = active ? directions[i] : Eigen::Vector3f(0, 0, 1);
-    packet.ray.org_x[i] = origin.x();
-    packet.ray.org_y[i] = origin.y();
-    packet.ray.org_z[i] = origin.z();
-    packet.ray.dir_x[i] = d.x();
-    packet.ray.dir_y[i] = d.y();
-    packet.ray.dir_z[i] = d.z();
-    packet.ray.tnear[i] = 0.0f;
-    packet.ray.tfar[i] = std::numeric_limits<float>::infinity();
+    const Ray r = active ? rays[i] : Ray{};
+    packet.ray.org_x[i] = r.origin.x();
+    packet.ray.org_y[i] = r.origin.y();
+    packet.ray.org_z[i] = r.origin.z();
+    packet.ray.dir_x[i] = r.direction.x();
+    packet.ray.dir_y[i] = r.direction.y();
+    packet.ray.dir_z[i] = r.direction.z();
+    packet.ray.tnear[i] = r.tnear;
+    packet.ray.tfar[i] = r.tfar;
     packet.ray.time[i] = 0.0f;
     packet.ray.mask[i] = 0xffffffffu;
     packet.ray.id[i] = unsigned(i);
@@ -191,10 +197,10 @@ void RayTracer::intersect8(const Eigen::Vector3f& origin, const Eigen::Vector3f*
     hits[i] = packet.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID
                   ? Hit{}
                   : decode(packet.hit.geomID[i], packet.hit.instID[0][i], packet.hit.primID[i], packet.hit.u[i],
-                           packet.hit.v[i], packet.ray.tfar[i], directions[i]);
+                           packet.hit.v[i], packet.ray.tfar[i], rays[i].direction);
 }
 
-void RayTracer::occluded(const ShadowRay* rays, int count, bool* blocked) const {
+void RayTracer::occluded(const Ray* rays, int count, bool* blocked) const {
   constexpr int kChunk = 64;
   alignas(16) RTCRay stream[kChunk];
   RTCIntersectContext context;
@@ -202,7 +208,7 @@ void RayTracer::occluded(const ShadowRay* rays, int count, bool* blocked) const 
   for (int first = 0; first < count; first += kChunk) {
     const int n = std::min(kChunk, count - first);
     for (int k = 0; k < n; ++k) {
-      const ShadowRay& r = rays[first + k];
+      const Ray& r = rays[first + k];
       RTCRay& ray = stream[k];
       ray.org_x = r.origin.x();
       ray.org_y = r.origin.y();

@@ -24,8 +24,8 @@ struct Hit {
   bool missed() const { return triangle == kMiss; }
 };
 
-// A ray that only asks whether something blocks it between tnear and tfar.
-struct ShadowRay {
+// A ray segment: what it meets between tnear and tfar.
+struct Ray {
   Eigen::Vector3f origin{0.0f, 0.0f, 0.0f};
   Eigen::Vector3f direction{0.0f, 0.0f, 1.0f};
   float tnear = 0.0f;
@@ -39,16 +39,19 @@ struct ShadowRay {
 // geometry has none, so it costs nothing extra. Thread-safe for tracing.
 class RayTracer {
  public:
-  explicit RayTracer(const Scene& scene);
+  // alphaFilters = false treats MASK and BLEND triangles as opaque (`--no alpha_filters`).
+  explicit RayTracer(const Scene& scene, bool alphaFilters = true);
   ~RayTracer();
   RayTracer(const RayTracer&) = delete;
   RayTracer& operator=(const RayTracer&) = delete;
 
   // Traces up to 8 rays sharing one origin (a probe's rays) as one packet (rtcIntersect8).
   void intersect8(const Eigen::Vector3f& origin, const Eigen::Vector3f* directions, int count, Hit* hits) const;
+  // Traces up to 8 rays with their own origins and extents (bounce rays) as one packet.
+  void intersect8(const Ray* rays, int count, Hit* hits) const;
   // blocked[i]: something stops rays[i] between its tnear and tfar. Streams of rays
   // (rtcOccluded1M), any count.
-  void occluded(const ShadowRay* rays, int count, bool* blocked) const;
+  void occluded(const Ray* rays, int count, bool* blocked) const;
 
   int instancedMeshes() const { return instancedMeshes_; }    // meshes built once and instanced
   int filteredGeometries() const { return filteredGeometries_; }  // geometries with alpha filters
@@ -66,6 +69,7 @@ class RayTracer {
              const Eigen::Vector3f& direction) const;
 
   const Scene& scene_;
+  bool alphaFilters_ = true;
   RTCDevice device_ = nullptr;
   RTCScene rtcScene_ = nullptr;
   std::vector<RTCScene> meshScenes_;  // per mesh; null unless the mesh is instanced

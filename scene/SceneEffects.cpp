@@ -51,6 +51,11 @@ std::vector<PlannedEffect> planEffects(const Scene& scene, const SceneCensus& c)
                                      fmt::format("{} of {} triangles are MASK or BLEND", c.alphaTestedTriangles, n)}
                      : PlannedEffect{"alpha_filters", false,
                                      n == 0 ? "the scene has no triangles" : "every triangle is OPAQUE"});
+  plan.push_back(!scene.lights.empty()
+                     ? PlannedEffect{"direct_punctual", true, "probes receive the punctual lights' own light as exact deltas"}
+                     : PlannedEffect{"direct_punctual", false, "the scene has no KHR_lights_punctual lights"});
+  plan.push_back(n > 0 ? PlannedEffect{"probe_validity", true, "probes inside geometry are moved out or filled"}
+                       : PlannedEffect{"probe_validity", false, "the scene has no triangles to be inside of"});
   return plan;
 }
 

@@ -2,7 +2,7 @@
 
 #include "bake/Baker.h"
 #include "bake/DirectionSet.h"
-#include "bake/ProbeTracer.h"
+#include "bake/PathIntegrator.h"
 #include "bake/ShBasis.h"
 #include "scene/GltfLoader.h"
 #include "scene/RayTracer.h"
@@ -18,9 +18,11 @@ TEST(EmitPlane, ProbeAtOriginSeesThePlaneAboveAndNothingBelow) {
   const RayTracer tracer(scene);
   std::vector<Eigen::Vector3f> dirs;
   for (const Eigen::Vector3d& d : sphericalFibonacci(2048).directions) dirs.push_back(d.cast<float>());
-  const ProbeTracer probe(scene, tracer, dirs);
+  const PathIntegrator probe(scene, tracer, TransportSettings{});
   std::vector<Eigen::Vector3f> radiance(dirs.size());
-  probe.trace(Eigen::Vector3f::Zero(), radiance.data());
+  std::vector<float> visibility(dirs.size());
+  RayCounts counts;
+  probe.trace(Eigen::Vector3f::Zero(), 0, dirs.data(), int(dirs.size()), radiance.data(), visibility.data(), &counts);
 
   int above = 0, below = 0;
   for (std::size_t k = 0; k < dirs.size(); ++k) {
@@ -32,6 +34,7 @@ TEST(EmitPlane, ProbeAtOriginSeesThePlaneAboveAndNothingBelow) {
     } else if (dirs[k].y() < 0.0f) {
       ++below;
       EXPECT_EQ(radiance[k], Eigen::Vector3f::Zero());
+      EXPECT_EQ(visibility[k], 1.0f);
     }
   }
   EXPECT_GT(above, 900);
@@ -46,7 +49,9 @@ TEST(EmitPlane, BakedIrradianceMatchesTheHalfSpaceClosedForm) {
   const RayTracer tracer(scene);
   ProbeGrid grid;  // one probe at the origin
   const ShBasis basis(2);
-  const Volume volume = bakeVolume(scene, tracer, basis, grid, 4096, nullptr);
+  BakeSettings settings;
+  settings.rays = 4096;
+  const Volume volume = bakeVolume(scene, tracer, basis, grid, settings, nullptr);
   const Eigen::Vector3f radiance(0.4f, 2.0f, 3.6f);
   for (const Eigen::Vector3d& n : {Eigen::Vector3d(0, 1, 0), Eigen::Vector3d(0, -1, 0), Eigen::Vector3d(1, 0, 0),
                                    Eigen::Vector3d(0, 0.6, -0.8), Eigen::Vector3d(-0.6, -0.8, 0)}) {

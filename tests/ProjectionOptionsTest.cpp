@@ -17,7 +17,9 @@ class ProjectionOptionsTest : public ::testing::Test {
     grid_ = makeProbeGrid(scene_->bounds, 1.0, 1000);
   }
   Volume bake(const std::string& basisName, const ProjectionOptions& options) {
-    return bakeVolume(*scene_, *tracer_, *makeBasis(basisName), grid_, 256, nullptr, options);
+    BakeSettings settings;
+    settings.projection = options;
+    return bakeVolume(*scene_, *tracer_, *makeBasis(basisName), grid_, settings, nullptr);
   }
   std::unique_ptr<Scene> scene_;
   std::unique_ptr<RayTracer> tracer_;

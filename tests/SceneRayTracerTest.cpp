@@ -52,7 +52,7 @@ TEST_F(SceneRayTracer, MaskFilterLetsRaysThroughTransparentTexels) {
   EXPECT_FLOAT_EQ(hit.distance, 1.0f);
 
   // Occlusion agrees: a shadow ray ending between the two squares is blocked only on the right.
-  const ShadowRay rays[2] = {{{0.5f, 1.0f, 1.0f}, down, 0.0f, 1.5f}, {{1.5f, 1.0f, 1.0f}, down, 0.0f, 1.5f}};
+  const Ray rays[2] = {{{0.5f, 1.0f, 1.0f}, down, 0.0f, 1.5f}, {{1.5f, 1.0f, 1.0f}, down, 0.0f, 1.5f}};
   bool blocked[2];
   tracer.occluded(rays, 2, blocked);
   EXPECT_FALSE(blocked[0]);
@@ -65,10 +65,10 @@ TEST_F(SceneRayTracer, OccludedAgreesWithClosestHitsForManyRays) {
   const RayTracer tracer(scene);
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-  std::vector<ShadowRay> rays;
+  std::vector<Ray> rays;
   std::vector<Hit> hits;
   for (int k = 0; k < 1000; ++k) {
-    ShadowRay r;
+    Ray r;
     r.origin = Eigen::Vector3f(1 + u(rng), 1 + u(rng), 0.5f + u(rng));
     r.direction = Eigen::Vector3f(u(rng), u(rng), u(rng)).normalized();
     r.tfar = 1.0f + u(rng);
@@ -93,8 +93,8 @@ TEST_F(SceneRayTracer, BlendCoverageIsStochasticDeterministicAndMatchesAlpha) {
   const RayTracer tracer(scene);
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-  std::vector<ShadowRay> rays(20000);
-  for (ShadowRay& r : rays) {
+  std::vector<Ray> rays(20000);
+  for (Ray& r : rays) {
     r.origin = Eigen::Vector3f(u(rng), u(rng), 1.0f);
     r.direction = Eigen::Vector3f(0.3f * u(rng), 0.3f * u(rng), -1.0f).normalized();
   }
@@ -117,7 +117,7 @@ TEST_F(SceneRayTracer, AlphaFencePassesExactlyTheTransparentTexels) {
   const RayTracer tracer(scene);
   EXPECT_EQ(tracer.filteredGeometries(), 1);
   const Eigen::Vector3f back(0, 0, -1);
-  std::vector<ShadowRay> rays;
+  std::vector<Ray> rays;
   int passed = 0;
   for (int j = 0; j < 64; ++j)
     for (int i = 0; i < 64; ++i) {

@@ -50,7 +50,9 @@ TEST(VdbRoundTrip, DefaultSceneBakeReadsBackIdentical) {
   const RayTracer tracer(scene);
   const auto basis = makeBasis("sh-l2");
   const ProbeGrid grid = makeProbeGrid(scene.bounds, 0.5, 1 << 20);
-  Volume v = bakeVolume(scene, tracer, *basis, grid, 64, nullptr);
+  BakeSettings settings;
+  settings.rays = 64;
+  Volume v = bakeVolume(scene, tracer, *basis, grid, settings, nullptr);
   float largest = 0.0f;
   for (float c : v.coefficients) largest = std::max(largest, std::abs(c));
   EXPECT_GT(largest, 0.1f) << "the emissive panel must show up in the bake";

@@ -1,0 +1,56 @@
+#pragma once
+#include <Eigen/Core>
+#include <cstdint>
+
+#include "bake/EmitterSampler.h"
+#include "bake/Transport.h"
+#include "scene/RayTracer.h"
+#include "scene/Scene.h"
+
+namespace baker {
+
+// Radiance arriving at a probe along fixed directions, one Lambertian path per direction.
+//
+// A probe ray returns what it meets: emission (single-sided surfaces emit from the front), or
+// the sky, and it records sky visibility (1 when it escapes). At each of up to `bounces`
+// diffuse reflections the path adds next-event estimates for punctual lights (shadow rays),
+// emissive triangles (chosen by power) and the sky (importance sampled), then continues along
+// a cosine-distributed direction; emissive triangles and the sky are combined with that
+// direction by multiple importance sampling (power heuristic), so each is counted once. Paths
+// whose weight has dropped below a quarter play Russian roulette. Every effect the settings
+// turn off costs no rays at all.
+//
+// Work is a wavefront per probe: closest hits go to Embree eight at a time (rtcIntersect8),
+// shadow rays of one bounce as one stream (rtcOccluded1M).
+class PathIntegrator {
+ public:
+  PathIntegrator(const Scene& scene, const RayTracer& tracer, const TransportSettings& settings);
+
+  // radiance[i] and visibility[i] for directions[i], i < count. The random numbers of ray i
+  // depend only on (settings.seed, probeId, i).
+  void trace(const Eigen::Vector3f& position, std::uint64_t probeId, const Eigen::Vector3f* directions, int count,
+             Eigen::Vector3f* radiance, float* visibility, RayCounts* counts) const;
+
+  const EmitterSampler& emitters() const { return emitters_; }
+  // How far a ray starts off the surface it leaves: relative to the point's magnitude and the
+  // scene's size, so that the same scene at any scale bakes the same.
+  float rayOffset(const Eigen::Vector3f& point) const;
+
+ private:
+  struct Vertex;
+  void addNextEvents(std::vector<Vertex>& vertices, Eigen::Vector3f* radiance, RayCounts* counts) const;
+  void continuePaths(std::vector<Vertex>& vertices, bool keepVertices, Eigen::Vector3f* radiance,
+                     RayCounts* counts) const;
+  bool makeVertex(const Hit& hit, const Eigen::Vector3f& origin, const Eigen::Vector3f& direction,
+                  const Eigen::Vector3f& throughput, Vertex* vertex) const;
+
+  const Scene& scene_;
+  const RayTracer& tracer_;
+  TransportSettings settings_;
+  EmitterSampler emitters_;
+  bool sampleEmitters_;     // emissive triangles light surfaces, and there are some
+  bool sampleEnvironment_;  // the sky lights surfaces
+  float sceneScale_;
+};
+
+}  // namespace baker

@@ -1,0 +1,30 @@
+#pragma once
+#include <cstdint>
+
+namespace baker {
+
+// The random numbers of one path, derived only from (seed, probe, ray): a bake draws the same
+// numbers for a path whichever thread traces it, so volumes are bit-identical at any thread
+// count. A splitmix64 stream: each draw advances a counter and scrambles it.
+class PathRandom {
+ public:
+  PathRandom(std::uint64_t seed, std::uint64_t probe, std::uint64_t ray)
+      : state_(scramble(scramble(scramble(seed) ^ probe) ^ ray)) {}
+
+  // Uniform in [0, 1), 24 bits: exactly representable in float, never 1.
+  float uniform() { return float(next() >> 40) * (1.0f / 16777216.0f); }
+
+  static std::uint64_t scramble(std::uint64_t h) {
+    h += 0x9e3779b97f4a7c15ull;
+    h = (h ^ (h >> 30)) * 0xbf58476d1ce4e5b9ull;
+    h = (h ^ (h >> 27)) * 0x94d049bb133111ebull;
+    return h ^ (h >> 31);
+  }
+
+ private:
+  std::uint64_t next() { return scramble(state_ += 0x632be59bd9b4e019ull); }
+
+  std::uint64_t state_;
+};
+
+}  // namespace baker

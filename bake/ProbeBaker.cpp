@@ -1,0 +1,213 @@
+#include "bake/ProbeBaker.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "bake/DirectionSet.h"
+#include "bake/NonNegativeProjection.h"
+#include "bake/PathRandom.h"
+
+namespace baker {
+namespace {
+
+// Rotation 0 is the identity; the others are uniformly random rotations (Shoemake's method)
+// from a fixed stream, so they are the same in every bake.
+Eigen::Matrix3f fixedRotation(int index) {
+  if (index == 0) return Eigen::Matrix3f::Identity();
+  PathRandom random(0x726f746174696f6eull, std::uint64_t(index), 0);
+  const double u1 = random.uniform(), u2 = 2.0 * M_PI * random.uniform(), u3 = 2.0 * M_PI * random.uniform();
+  const double a = std::sqrt(1.0 - u1), b = std::sqrt(u1);
+  const Eigen::Quaterniond q(b * std::cos(u3), a * std::sin(u2), a * std::cos(u2), b * std::sin(u3));
+  return q.normalized().toRotationMatrix().cast<float>();
+}
+
+DirectionSet rotated(const DirectionSet& set, const Eigen::Matrix3f& rotation) {
+  DirectionSet out = set;
+  for (Eigen::Vector3d& d : out.directions) d = (rotation.cast<double>() * d).normalized();
+  return out;
+}
+
+}  // namespace
+
+Eigen::Vector3f sampledIrradiance(const ProbeSamples& s, const Eigen::Vector3f& n) {
+  Eigen::Vector3d e = Eigen::Vector3d::Zero();
+  for (std::size_t r = 0; r < s.radiance.size(); ++r)
+    e += s.radiance[r].cast<double>() * (s.weights[r] * std::max(0.0f, n.dot(s.directions[r])));
+  for (const PunctualAtProbe::Arrival& a : s.punctual)
+    e += a.irradiance.cast<double>() * double(std::max(0.0f, n.dot(a.direction)));
+  return e.cast<float>();
+}
+
+// Consecutive colour channels that share one function set are projected together: for an RGB
+// basis that is one product over all three channels.
+struct ProbeBaker::ChannelGroup {
+  int firstChannel = 0;
+  int channelCount = 0;
+  int functions = 0;
+  std::vector<Eigen::MatrixXf> fromSamples;  // per rotation: functions × rays, radiance → irradiance
+  Eigen::MatrixXd fromPunctualSh;            // functions × PunctualAtProbe::kShCount
+  Eigen::MatrixXd gram;                      // for the non-negative solve
+};
+
+ProbeBaker::ProbeBaker(const Scene& scene, const RayTracer& tracer, const Basis& basis, const BakeSettings& settings,
+                       int rotations)
+    : basis_(basis),
+      settings_(settings),
+      integrator_(scene, tracer, settings.transport),
+      punctual_(scene, tracer),
+      coefficientsPerProbe_(basis.totalCoefficients()),
+      visibilityPerProbe_(basis.functions(0).count()) {
+  const DirectionSet fibonacci = sphericalFibonacci(settings.rays);
+  weights_ = fibonacci.weights;
+  shOrder_ = std::min(resolvableShOrder(fibonacci.size()), kMaxSampleShOrder);
+  std::vector<DirectionSet> sets;
+  for (int r = 0; r < rotations; ++r) {
+    sets.push_back(rotated(fibonacci, fixedRotation(r)));
+    std::vector<Eigen::Vector3f> d;
+    for (const Eigen::Vector3d& v : sets.back().directions) d.push_back(v.cast<float>());
+    directions_.push_back(std::move(d));
+  }
+  const bool punctualAtProbe = settings.transport.directPunctual && !punctual_.empty();
+  for (int c = 0; c < 3; ++c) {
+    if (c > 0 && &basis.functions(c) == &basis.functions(c - 1)) {
+      ++groups_.back().channelCount;
+      continue;
+    }
+    const GramOperators ops(basis.functions(c), basis.name());
+    condition_ = std::max(condition_, ops.conditionNumber());
+    ChannelGroup group;
+    group.firstChannel = c;
+    group.channelCount = 1;
+    group.functions = basis.functions(c).count();
+    for (const DirectionSet& set : sets)
+      group.fromSamples.push_back(ops.irradianceFromSamples(set, shOrder_, settings.projection.window).cast<float>());
+    if (punctualAtProbe)
+      group.fromPunctualSh = ops.irradianceFromSh(PunctualAtProbe::kShOrder, settings.projection.window);
+    if (settings.projection.nonNegative) group.gram = ops.gram();
+    groups_.push_back(std::move(group));
+  }
+}
+
+ProbeBaker::~ProbeBaker() = default;
+
+void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, float* visibility, RayCounts* counts,
+                      std::vector<ProbeSamples>* samples) const {
+  const int p = int(tasks.size());
+  const int rays = settings_.rays;
+  const ColorSpace space = basis_.colorSpace();
+  if (samples) samples->assign(p, {});
+
+  // Probes in order of rotation, so that each rotation's columns are one block: per rotation,
+  // channel 0 of its probes, then channel 1, channel 2, visibility.
+  std::vector<int> order(p);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return tasks[a].rotation < tasks[b].rotation; });
+
+  Eigen::MatrixXf columns(rays, 4 * p);
+  const bool punctualAtProbe = settings_.transport.directPunctual && !punctual_.empty();
+  Eigen::MatrixXd punctualSh;
+  if (punctualAtProbe) punctualSh.setZero(PunctualAtProbe::kShCount, 3 * p);
+  bool anyPunctual = false;
+  std::vector<Eigen::Vector3f> radiance(rays);
+  std::vector<float> sky(rays);
+
+  struct Block {
+    int rotation, first, count;
+  };
+  std::vector<Block> blocks;
+  for (int s = 0; s < p; ++s) {
+    const int rotation = tasks[order[s]].rotation;
+    if (blocks.empty() || blocks.back().rotation != rotation) blocks.push_back({rotation, s, 0});
+    ++blocks.back().count;
+  }
+  for (const Block& block : blocks) {
+    const std::vector<Eigen::Vector3f>& dirs = directions_[block.rotation];
+    for (int within = 0; within < block.count; ++within) {
+      const int taskIndex = order[block.first + within];
+      const ProbeTask& task = tasks[taskIndex];
+      integrator_.trace(task.position, task.id, dirs.data(), rays, radiance.data(), sky.data(), counts);
+      const int base = 4 * block.first;
+      for (int r = 0; r < rays; ++r) {
+        const Eigen::Vector3f value = toColorSpace(space, radiance[r]);
+        for (int c = 0; c < 3; ++c) columns(r, base + c * block.count + within) = value[c];
+        columns(r, base + 3 * block.count + within) = sky[r];
+      }
+      std::vector<PunctualAtProbe::Arrival> lights;
+      if (punctualAtProbe) {
+        lights = punctual_.visibleLights(task.position, counts);
+        if (!lights.empty()) {
+          anyPunctual = true;
+          std::vector<double> sh(3 * PunctualAtProbe::kShCount, 0.0);
+          PunctualAtProbe::addHarmonics(lights, sh.data());
+          for (int i = 0; i < PunctualAtProbe::kShCount; ++i) {
+            const Eigen::Vector3d rgb(sh[i], sh[PunctualAtProbe::kShCount + i], sh[2 * PunctualAtProbe::kShCount + i]);
+            const Eigen::Vector3d value = toColorSpace(space, rgb.cast<float>()).cast<double>();
+            for (int c = 0; c < 3; ++c) punctualSh(i, c * p + taskIndex) = value[c];
+          }
+        }
+      }
+      if (samples) {
+        ProbeSamples& s = (*samples)[taskIndex];
+        s.directions = dirs;
+        s.weights = weights_;
+        s.radiance = radiance;
+        s.visibility = sky;
+        s.punctual = lights;
+      }
+    }
+  }
+
+  for (const Block& block : blocks) {
+    const int base = 4 * block.first;
+    for (const ChannelGroup& group : groups_) {
+      const Eigen::MatrixXf result = group.fromSamples[block.rotation] *
+                                     columns.middleCols(base + group.firstChannel * block.count,
+                                                        group.channelCount * block.count);
+      for (int c = 0; c < group.channelCount; ++c) {
+        const int offset = basis_.coefficientOffset(group.firstChannel + c);
+        for (int within = 0; within < block.count; ++within) {
+          float* out = coefficients + std::size_t(order[block.first + within]) * coefficientsPerProbe_ + offset;
+          for (int f = 0; f < group.functions; ++f) out[f] = result(f, c * block.count + within);
+        }
+      }
+    }
+    const Eigen::MatrixXf sight = groups_[0].fromSamples[block.rotation] *
+                                  columns.middleCols(base + 3 * block.count, block.count) * float(1.0 / M_PI);
+    for (int within = 0; within < block.count; ++within) {
+      float* out = visibility + std::size_t(order[block.first + within]) * visibilityPerProbe_;
+      for (int f = 0; f < visibilityPerProbe_; ++f) out[f] = sight(f, within);
+    }
+  }
+
+  if (anyPunctual) {
+    for (const ChannelGroup& group : groups_) {
+      const Eigen::MatrixXd result =
+          group.fromPunctualSh * punctualSh.middleCols(group.firstChannel * p, group.channelCount * p);
+      for (int c = 0; c < group.channelCount; ++c) {
+        const int offset = basis_.coefficientOffset(group.firstChannel + c);
+        for (int q = 0; q < p; ++q) {
+          float* out = coefficients + std::size_t(q) * coefficientsPerProbe_ + offset;
+          for (int f = 0; f < group.functions; ++f) out[f] += float(result(f, c * p + q));
+        }
+      }
+    }
+  }
+
+  if (settings_.projection.nonNegative) {
+    // The linear coefficients carry the moments m = G·c; re-solve them with c ≥ 0.
+    for (const ChannelGroup& group : groups_)
+      for (int c = 0; c < group.channelCount; ++c) {
+        const int offset = basis_.coefficientOffset(group.firstChannel + c);
+        for (int q = 0; q < p; ++q) {
+          float* out = coefficients + std::size_t(q) * coefficientsPerProbe_ + offset;
+          const Eigen::VectorXd linear = Eigen::Map<Eigen::VectorXf>(out, group.functions).cast<double>();
+          const Eigen::VectorXd constrained = nonNegativeProjection(group.gram, group.gram * linear);
+          for (int f = 0; f < group.functions; ++f) out[f] = float(constrained[f]);
+        }
+      }
+  }
+}
+
+}  // namespace baker

@@ -1,0 +1,97 @@
+#pragma once
+#include <Eigen/Core>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "bake/Basis.h"
+#include "bake/GramOperators.h"
+#include "bake/PathIntegrator.h"
+#include "bake/PunctualAtProbe.h"
+#include "bake/Transport.h"
+#include "scene/RayTracer.h"
+#include "scene/Scene.h"
+
+namespace baker {
+
+// How ray samples become coefficients beyond the default linear projection.
+struct ProjectionOptions {
+  BandWindow window;         // Hann window on the SH bands (paper eq. 8) against ringing
+  bool nonNegative = false;  // coefficients ≥ 0 by a per-probe constrained solve (NonNegativeProjection)
+};
+
+struct BakeSettings {
+  int rays = 256;
+  ProjectionOptions projection;
+  TransportSettings transport;
+};
+
+// One probe to bake: where it is, the id its random numbers derive from, and which rotation of
+// the direction set it traces.
+struct ProbeTask {
+  Eigen::Vector3f position{0.0f, 0.0f, 0.0f};
+  std::uint64_t id = 0;
+  int rotation = 0;
+};
+
+// What a probe's rays brought back, for tools that look at one probe (`baker probe`).
+struct ProbeSamples {
+  std::vector<Eigen::Vector3f> directions;
+  std::vector<double> weights;  // quadrature weights, Σ = 4π
+  std::vector<Eigen::Vector3f> radiance;
+  std::vector<float> visibility;
+  std::vector<PunctualAtProbe::Arrival> punctual;  // lights reaching the probe (direct-punctual)
+};
+
+// E(n) = Σ L(ω) max(0, n·ω) w over the probe's rays, plus each punctual light's exact
+// E⊥ max(0, n·ω): the irradiance the samples imply, before any basis.
+Eigen::Vector3f sampledIrradiance(const ProbeSamples& samples, const Eigen::Vector3f& normal);
+
+// Bakes batches of probes (a brick) into basis coefficients. Each probe traces a fixed set of
+// `rays` spherical Fibonacci directions, turned by one of a few fixed rotations: neighbouring
+// probes of a grid trace differently turned sets, so the aliasing of one set (bands along its
+// spiral) does not repeat as one coherent pattern across the volume, and no probe needs an
+// operator of its own. Each rotation has its precomputed projection: samples → SH fit of
+// the resolvable order → clamped-cosine convolution → exact projection into the basis. A batch
+// costs one matrix product per rotation and channel group. Punctual lights seen by the probe
+// enter as exact SH deltas through a second precomputed product.
+class ProbeBaker {
+ public:
+  // The sample fit never goes beyond this SH order: the clamped cosine's band 16 is 0.15 % of
+  // band 0, and the fit's cost grows with the square of the SH count.
+  static constexpr int kMaxSampleShOrder = 16;
+
+  ProbeBaker(const Scene& scene, const RayTracer& tracer, const Basis& basis, const BakeSettings& settings,
+             int rotations);
+  ~ProbeBaker();
+
+  int coefficientsPerProbe() const { return coefficientsPerProbe_; }
+  // Sky visibility is stored like channel 0's irradiance, divided by π: V(n) = (1/π) ∫ V max(0, n·ω) dω.
+  int visibilityPerProbe() const { return visibilityPerProbe_; }
+  int rotations() const { return int(directions_.size()); }
+  const std::vector<Eigen::Vector3f>& directions(int rotation) const { return directions_[rotation]; }
+  int shOrder() const { return shOrder_; }
+  double conditionNumber() const { return condition_; }
+  const PathIntegrator& integrator() const { return integrator_; }
+
+  // coefficients: tasks.size() × coefficientsPerProbe(); visibility: × visibilityPerProbe().
+  // `samples`, when given, receives each task's samples.
+  void bake(const std::vector<ProbeTask>& tasks, float* coefficients, float* visibility, RayCounts* counts,
+            std::vector<ProbeSamples>* samples = nullptr) const;
+
+ private:
+  struct ChannelGroup;
+  const Basis& basis_;
+  BakeSettings settings_;
+  PathIntegrator integrator_;
+  PunctualAtProbe punctual_;
+  std::vector<std::vector<Eigen::Vector3f>> directions_;  // per rotation
+  std::vector<double> weights_;
+  std::vector<ChannelGroup> groups_;
+  int coefficientsPerProbe_ = 0;
+  int visibilityPerProbe_ = 0;
+  int shOrder_ = 0;
+  double condition_ = 0.0;
+};
+
+}  // namespace baker

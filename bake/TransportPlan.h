@@ -1,0 +1,18 @@
+#pragma once
+#include <string>
+#include <vector>
+
+#include "bake/Transport.h"
+#include "scene/SceneEffects.h"
+
+namespace baker {
+
+// Turns off the effects the user named (`--no EFFECT`, with '-' or '_' in the key), saying so
+// in their reason. Throws InputError for a name that is not an effect, listing the keys.
+void turnOffEffects(std::vector<PlannedEffect>& plan, const std::vector<std::string>& names);
+
+// The simulation the plan describes, with at most `bounces` diffuse reflections (none when the
+// bounces effect is off; --bounces 0 turns it off in the plan).
+TransportSettings transportSettings(std::vector<PlannedEffect>& plan, int bounces, std::uint64_t seed);
+
+}  // namespace baker

@@ -1,0 +1,107 @@
+#include "cli/BakeOptions.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <ostream>
+
+#include "bake/BasisRegistry.h"
+#include "bake/TransportPlan.h"
+#include "common/Error.h"
+#include "scene/GltfLoader.h"
+#include "scene/SceneCensus.h"
+
+namespace baker {
+namespace {
+
+// A grid beyond this many probes is refused before anything is traced.
+constexpr std::int64_t kMaxProbes = std::int64_t(1) << 27;
+constexpr int kMaxRays = 1 << 20;
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+void addBakeOptions(CLI::App& app, BakeOptions& o) {
+  app.add_option("scene", o.scenePath, "glTF 2.0 scene (.gltf or .glb)")->required();
+  app.add_option("--basis", o.basisName, "basis to store (see `baker bases`)")->capture_default_str();
+  app.add_option("--spacing", o.spacing, "probe spacing in metres; default: the longest side of the scene / 16");
+  app.add_option("--rays", o.rays, "directions traced per probe, one path each")->capture_default_str();
+  app.add_option("--bounces", o.bounces,
+                 "diffuse reflections per path: 0 = emission and sky seen directly, 1 = adds the direct lighting of "
+                 "the first surface hit")
+      ->capture_default_str();
+  app.add_option("--seed", o.seed, "random seed; the same seed gives bit-identical volumes at any thread count")
+      ->capture_default_str();
+  app.add_option("--no", o.turnedOff,
+                 "turn an effect off (repeatable): emission, punctual-lights, emissive-lights, environment, bounces, "
+                 "alpha-filters, direct-punctual, probe-validity");
+  app.add_option("--threads", o.threads, "worker threads; default: all cores (the result does not depend on it)");
+  app.add_option("--sg-sharpness", o.sgSharpness, "lobe sharpness λ for sg-N bases; default: measured per N");
+  app.add_option("--window", o.projection.window.hannWidth,
+                 "fade SH bands out with a Hann window of this width before projecting (paper eq. 8; less "
+                 "ringing around bright small sources); default: none");
+  app.add_flag("--non-negative", o.projection.nonNegative,
+               "solve for coefficients >= 0 per probe instead of the linear projection");
+  addSceneOptions(app, o.scene);
+}
+
+PreparedBake prepareBake(const CLI::App& app, const BakeOptions& o, std::ostream& log) {
+  if (app.count("--spacing") && !(o.spacing > 0.0))
+    throw InputError(fmt::format("--spacing must be a positive number of metres, got {}", o.spacing));
+  if (o.rays <= 0 || o.rays > kMaxRays) throw InputError(fmt::format("--rays must be in 1..{}, got {}", kMaxRays, o.rays));
+  if (o.threads < 0) throw InputError(fmt::format("--threads must be positive, got {}", o.threads));
+  if (app.count("--sg-sharpness") && !(o.sgSharpness > 0.0))
+    throw InputError(fmt::format("--sg-sharpness must be a positive number, got {}", o.sgSharpness));
+  if (o.projection.window.hannWidth < 0)
+    throw InputError(fmt::format("--window must be a band count >= 1, got {}", o.projection.window.hannWidth));
+
+  PreparedBake b;
+  b.basis = makeBasis(o.basisName, o.sgSharpness);
+  if (o.threads > 0)
+    b.threadLimit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o.threads);
+  const auto start = std::chrono::steady_clock::now();
+  b.scene = std::make_unique<Scene>(loadGltf(o.scenePath, o.scene));
+  for (const std::string& w : b.scene->warnings) log << "baker: warning: " << w << "\n";
+  b.loadSeconds = secondsSince(start);
+  b.grid = makeProbeGrid(b.scene->bounds, o.spacing, kMaxProbes);
+
+  b.plan = planEffects(*b.scene, takeCensus(*b.scene));
+  turnOffEffects(b.plan, o.turnedOff);
+  b.settings.rays = o.rays;
+  b.settings.projection = o.projection;
+  b.settings.transport = transportSettings(b.plan, o.bounces, o.seed);
+  printPlan(log, b.plan);
+
+  const auto bvhStart = std::chrono::steady_clock::now();
+  b.tracer = std::make_unique<RayTracer>(*b.scene, b.settings.transport.alphaFilters);
+  b.bvhSeconds = secondsSince(bvhStart);
+  return b;
+}
+
+void printPlan(std::ostream& out, const std::vector<PlannedEffect>& plan) {
+  out << "plan:\n";
+  for (const PlannedEffect& e : plan)
+    out << fmt::format("  {:<16} {:<3}  {}\n", e.name, e.simulated ? "on" : "off", e.reason);
+}
+
+nlohmann::json planJson(const std::vector<PlannedEffect>& plan) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const PlannedEffect& e : plan) j[e.name] = {{"simulated", e.simulated}, {"reason", e.reason}};
+  return j;
+}
+
+nlohmann::json rayCountsJson(const RayCounts& r) {
+  return {{"probe", r.probe},
+          {"bounce", r.bounce},
+          {"punctual_shadow", r.punctualShadow},
+          {"emitter_shadow", r.emitterShadow},
+          {"environment_shadow", r.environmentShadow},
+          {"direct_punctual_shadow", r.directPunctualShadow},
+          {"validity", r.validity},
+          {"total", r.total()}};
+}
+
+}  // namespace baker
