@@ -33,29 +33,21 @@ BakeSettings settingsWith(int rays, int bounces) {
   return s;
 }
 
-// point_ground: 10 cd 2 m above a ρ = 0.5 ground. At (0,1,0) the ground's light gives
-// E(−Y) = 0.79885; the light itself, straight up, adds nothing to −Y.
-TEST(LightTransport, PointGroundIrradianceBelowTheProbe) {
+// point_ground and spot_ground: a 10 cd light 2 m above a ρ = 0.5 ground. At (0,1,0) the
+// ground's light gives E(−Y) = 0.79885 (point) and 0.55874 (spot, inner 20°, outer 40°); the
+// light itself, straight up, adds nothing to −Y and E⊥ = 10/1² to +Y.
+TEST(LightTransport, LightOverGroundIrradianceBelowTheProbe) {
   REQUIRE_SHARED_DATA();
-  const Scene scene = sharedScene("point_ground");
-  const RayTracer tracer(scene);
-  const ShBasis basis(2);
-  const test::BakedProbe probe = test::bakeProbe(scene, tracer, basis, settingsWith(16384, 3), {0, 1, 0});
-  EXPECT_NEAR(sampledIrradiance(probe.samples, kDown).x(), 0.79885, 0.005 * 0.79885);
-  // The light reaches the probe as a delta of E⊥ = 10/1².
-  ASSERT_EQ(probe.samples.punctual.size(), 1u);
-  EXPECT_NEAR(probe.samples.punctual[0].irradiance.x(), 10.0f, 1e-5f);
-  EXPECT_NEAR(sampledIrradiance(probe.samples, -kDown).x(), 10.0f, 1e-4f);
-  EXPECT_EQ(probe.rays.emitterShadow + probe.rays.environmentShadow, 0) << "no emitters, no sky: no such rays";
-}
-
-TEST(LightTransport, SpotGroundIrradianceBelowTheProbe) {
-  REQUIRE_SHARED_DATA();
-  const Scene scene = sharedScene("spot_ground");
-  const RayTracer tracer(scene);
-  const ShBasis basis(2);
-  const test::BakedProbe probe = test::bakeProbe(scene, tracer, basis, settingsWith(16384, 3), {0, 1, 0});
-  EXPECT_NEAR(sampledIrradiance(probe.samples, kDown).x(), 0.55874, 0.005 * 0.55874);
+  for (const auto& [name, expected] : {std::pair<std::string, double>{"point_ground", 0.79885}, {"spot_ground", 0.55874}}) {
+    const Scene scene = sharedScene(name);
+    const RayTracer tracer(scene);
+    const ShBasis basis(2);
+    const test::BakedProbe probe = test::bakeProbe(scene, tracer, basis, settingsWith(16384, 3), {0, 1, 0});
+    EXPECT_NEAR(sampledIrradiance(probe.samples, kDown).x(), expected, 0.005 * expected) << name;
+    ASSERT_EQ(probe.samples.punctual.size(), 1u) << name;
+    EXPECT_NEAR(sampledIrradiance(probe.samples, -kDown).x(), 10.0f, 1e-4f) << name;
+    EXPECT_EQ(probe.rays.emitterShadow + probe.rays.environmentShadow, 0) << "no emitters, no sky: no such rays";
+  }
 }
 
 // sun_ground: the ground in the sun has L = 0.5/π · 3 · colour · cosθ with cosθ = 2/‖(−1, −2, −0.5)‖;

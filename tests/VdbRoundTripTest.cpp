@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <filesystem>
 #include <random>
 
@@ -23,6 +25,10 @@ void expectSameVolume(const Volume& a, const Volume& b) {
   ASSERT_EQ(a.coefficients.size(), b.coefficients.size());
   for (std::size_t i = 0; i < a.coefficients.size(); ++i)
     ASSERT_EQ(a.coefficients[i], b.coefficients[i]) << "coefficient " << i;  // bit-exact in float
+  EXPECT_EQ(a.visibilityPerProbe, b.visibilityPerProbe);
+  EXPECT_TRUE(a.visibility == b.visibility);
+  EXPECT_TRUE(a.states == b.states);
+  EXPECT_TRUE(a.offsets == b.offsets);
 }
 
 TEST(VdbRoundTrip, RandomCoefficientsReadBackIdentical) {
@@ -56,6 +62,11 @@ TEST(VdbRoundTrip, DefaultSceneBakeReadsBackIdentical) {
   float largest = 0.0f;
   for (float c : v.coefficients) largest = std::max(largest, std::abs(c));
   EXPECT_GT(largest, 0.1f) << "the emissive panel must show up in the bake";
+  // The room has furniture: some probes sit inside it and are moved or filled.
+  EXPECT_GT(std::count(v.states.begin(), v.states.end(), ProbeState::Relocated) +
+                std::count(v.states.begin(), v.states.end(), ProbeState::Invalid),
+            0);
+  EXPECT_EQ(v.visibilityPerProbe, 9);
   const std::string path = test::makeTempDir("vdb-default") + "/room.vdb";
   writeVdb(v, *basis, path);
   expectSameVolume(v, readVolume(path));
