@@ -20,6 +20,8 @@ Eigen::Vector3d centreBlend(const Eigen::Vector3d& b) {
 
 }  // namespace
 
+double AmbientDiceBezierFunctions::alpha() { return 0.5 * std::sqrt((5.0 + std::sqrt(5.0)) / 2.0); }
+
 AmbientDiceBezierFunctions::AmbientDiceBezierFunctions(Barycentrics kind) : kind_(kind) {
   const double root5 = std::sqrt(5.0);
   if (kind == Barycentrics::Spherical) {
@@ -37,7 +39,6 @@ AmbientDiceBezierFunctions::AmbientDiceBezierFunctions(Barycentrics kind) : kind
   // changes along it at 3(β c300 + α c210), which gives c210 from f(v0) and the derivative
   // (vf = −β/α; flat barycentrics move at (−α, α, 0), so there vf = 1). The paper's α, kept
   // for compatibility, is off by cos(θ/2): see the header.
-  const double alpha = 0.5 * std::sqrt((5.0 + root5) / 2.0);
   const Icosahedron& ico = Icosahedron::instance();
   for (int t = 0; t < Icosahedron::kTriangleCount; ++t)
     for (int k = 0; k < 3; ++k)
@@ -46,7 +47,7 @@ AmbientDiceBezierFunctions::AmbientDiceBezierFunctions(Barycentrics kind) : kind
         const int i = ico.triangle(t)[k], j = ico.triangle(t)[m];
         const Eigen::Vector3d& v = ico.vertex(i);
         const Eigen::Vector3d e = (ico.vertex(j) - v.dot(ico.vertex(j)) * v).normalized();
-        edgeFactors_[t][3 * k + m] = Eigen::Vector2d(e.dot(ico.tangent(i)), e.dot(ico.bitangent(i))) / (3.0 * alpha);
+        edgeFactors_[t][3 * k + m] = Eigen::Vector2d(e.dot(ico.tangent(i)), e.dot(ico.bitangent(i))) / (3.0 * alpha());
       }
 }
 

@@ -40,6 +40,10 @@ class AmbientDiceBezierFunctions : public SphericalFunctions {
  public:
   explicit AmbientDiceBezierFunctions(Barycentrics kind);
   Barycentrics barycentrics() const { return kind_; }
+  // vf, (a0, a1, a2) and the paper's α above, for describing the patch to importers.
+  double vertexFactor() const { return vertexFactor_; }
+  std::array<double, 3> interiorWeights() const { return {a0_, a1_, a2_}; }
+  static double alpha();
   int count() const override { return 3 * Icosahedron::kVertexCount; }
   void evaluate(const Eigen::Vector3d& direction, double* values) const override;
   // The weights of the 9 data of p's triangle in the patch at p: datum j of corner k

@@ -11,6 +11,7 @@ namespace baker {
 class AmbientDiceLinearFunctions : public SphericalFunctions {
  public:
   explicit AmbientDiceLinearFunctions(Barycentrics kind) : kind_(kind) {}
+  Barycentrics barycentrics() const { return kind_; }
   int count() const override { return Icosahedron::kVertexCount; }
   void evaluate(const Eigen::Vector3d& direction, double* values) const override;
 

@@ -23,6 +23,9 @@ class AmbientDiceSrbfFunctions : public SphericalFunctions {
   std::vector<Eigen::Vector3d> kinkPlanes() const override;
   // λ(c) for c ≥ 0.
   double lobe(double cosine) const;
+  // The coefficients of c² and c⁴ in λ, normalisation included.
+  double cos2Coefficient() const { return cos2_; }
+  double cos4Coefficient() const { return cos4_; }
 
  private:
   double cos2_, cos4_;  // coefficients of c² and c⁴ in λ, normalisation included

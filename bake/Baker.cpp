@@ -4,6 +4,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <atomic>
 #include <chrono>
 #include <vector>
 
@@ -21,7 +22,8 @@ int rotationOf(int i, int j, int k) { return (i & 1) + 2 * (j & 1) + 4 * (k & 1)
 }  // namespace
 
 Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basis, const ProbeGrid& grid,
-                  const BakeSettings& settings, BakeStats* stats) {
+                  const BakeSettings& settings, BakeStats* stats,
+                  const std::function<void(std::int64_t, std::int64_t)>& progress) {
   if (settings.rays <= 0) throw InputError(fmt::format("--rays must be positive, got {}", settings.rays));
   const auto start = std::chrono::steady_clock::now();
   const ProbeBaker probeBaker(scene, tracer, basis, settings, kRotations);
@@ -43,6 +45,7 @@ Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basi
   const Eigen::Vector3i bricks = (grid.dims.array() + kBrickSize - 1) / kBrickSize;
   const int brickCount = bricks.x() * bricks.y() * bricks.z();
   std::vector<RayCounts> brickRays(brickCount);
+  std::atomic<std::int64_t> bricksDone{0};
 
   tbb::parallel_for(tbb::blocked_range<int>(0, brickCount, 1), [&](const tbb::blocked_range<int>& range) {
     std::vector<float> coefficients, visibility;
@@ -76,6 +79,7 @@ Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basi
         std::copy_n(visibility.data() + t * volume.visibilityPerProbe, volume.visibilityPerProbe,
                     volume.visibility.data() + tasks[t].id * volume.visibilityPerProbe);
       }
+      if (progress) progress(++bricksDone, brickCount);
     }
   });
   fillInvalidProbes(grid, volume.states, volume.coefficientsPerProbe, volume.coefficients);
@@ -83,8 +87,13 @@ Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basi
 
   for (std::size_t i = 0; i < volume.coefficients.size(); ++i)
     if (!std::isfinite(volume.coefficients[i]))
-      throw NumericalError(fmt::format("probe {} of the bake has a non-finite coefficient; nothing was written",
+      throw NumericalError(fmt::format("probe {} of the bake has a non-finite coefficient (the scene's radiance "
+                                       "overflows float); nothing was written",
                                        i / volume.coefficientsPerProbe));
+  for (std::size_t i = 0; i < volume.visibility.size(); ++i)
+    if (!std::isfinite(volume.visibility[i]))
+      throw NumericalError(fmt::format("probe {} of the bake has a non-finite sky visibility; nothing was written",
+                                       i / volume.visibilityPerProbe));
 
   if (stats) {
     stats->probes = grid.probeCount();

@@ -1,5 +1,6 @@
 #pragma once
 #include <cstdint>
+#include <functional>
 
 #include "bake/Basis.h"
 #include "bake/ProbeBaker.h"
@@ -31,7 +32,9 @@ struct BakeStats {
 // irradiance, not E/π), in `basis`, plus its sky visibility. Probes inside geometry are moved
 // out or, failing that, filled from valid neighbours (ProbeValidity). The result depends on
 // settings.transport.seed and not on the number of threads.
+// `progress`, when given, hears (bricks done, bricks in all) from worker threads.
 Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basis, const ProbeGrid& grid,
-                  const BakeSettings& settings, BakeStats* stats);
+                  const BakeSettings& settings, BakeStats* stats,
+                  const std::function<void(std::int64_t, std::int64_t)>& progress = {});
 
 }  // namespace baker

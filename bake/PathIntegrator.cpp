@@ -59,12 +59,15 @@ PathIntegrator::PathIntegrator(const Scene& scene, const RayTracer& tracer, cons
       sceneScale_(scene.bounds.isEmpty() ? 1.0f : scene.bounds.diagonal().norm()) {}
 
 float PathIntegrator::rayOffset(const Eigen::Vector3f& point) const {
-  return 1e-4f * std::max(point.cwiseAbs().maxCoeff(), 1e-2f * sceneScale_);
+  // A hit point is only known to a few units in the last place of its largest coordinate (and
+  // of the scene's size, for points near the origin): step 32 of those off the surface.
+  const float magnitude = std::max(point.cwiseAbs().maxCoeff(), sceneScale_);
+  return 32.0f * (std::nextafter(magnitude, std::numeric_limits<float>::infinity()) - magnitude);
 }
 
-bool PathIntegrator::makeVertex(const Hit& hit, const Eigen::Vector3f& origin, const Eigen::Vector3f& direction,
-                                const Eigen::Vector3f& throughput, Vertex* vertex) const {
-  const SurfaceSample surface = shadeSurface(scene_, scene_.instances[hit.instance].mesh, hit.triangle, hit.u, hit.v);
+bool PathIntegrator::makeVertex(const Hit& hit, const SurfaceSample& surface, const Eigen::Vector3f& origin,
+                                const Eigen::Vector3f& direction, const Eigen::Vector3f& throughput,
+                                Vertex* vertex) const {
   if (!(surface.albedo.maxCoeff() > 0.0f)) return false;
   const Eigen::Vector3f front = scene_.frontNormal(hit.instance, hit.triangle);
   vertex->point = origin + hit.distance * direction;
@@ -93,12 +96,11 @@ void PathIntegrator::trace(const Eigen::Vector3f& position, std::uint64_t probeI
         if (seeSky) radiance[ray] = sky.radiance(directions[ray]);
         continue;
       }
-      if (settings_.emission) {
-        const SurfaceSample s = shadeSurface(scene_, scene_.instances[hit.instance].mesh, hit.triangle, hit.u, hit.v);
-        if (hit.frontFace || s.doubleSided) radiance[ray] = s.emission;
-      }
+      if (!settings_.emission && settings_.bounces == 0) continue;
+      const SurfaceSample s = shadeSurface(scene_, scene_.instances[hit.instance].mesh, hit.triangle, hit.u, hit.v);
+      if (settings_.emission && (hit.frontFace || s.doubleSided)) radiance[ray] = s.emission;
       Vertex v;
-      if (settings_.bounces > 0 && makeVertex(hit, position, directions[ray], Eigen::Vector3f::Ones(), &v)) {
+      if (settings_.bounces > 0 && makeVertex(hit, s, position, directions[ray], Eigen::Vector3f::Ones(), &v)) {
         v.path = ray;
         v.random = PathRandom(settings_.seed, probeId, std::uint64_t(ray));
         vertices.push_back(v);
@@ -177,7 +179,8 @@ void PathIntegrator::addNextEvents(std::vector<Vertex>& vertices, Eigen::Vector3
       const SurfaceSample emitter = shadeSurface(scene_, mesh, s.triangle, s.u, s.v);
       const float cosLight = -scene_.frontNormal(s.instance, s.triangle).dot(toLight);
       if (std::abs(cosLight) < 1e-6f || (cosLight < 0.0f && !emitter.doubleSided)) continue;
-      if (!surfaceStopsRay(scene_, mesh, s.triangle, s.u, s.v, xiCoverage)) continue;  // a transparent texel
+      if (settings_.alphaFilters && !surfaceStopsRay(scene_, mesh, s.triangle, s.u, s.v, xiCoverage))
+        continue;  // a transparent texel
       const float pdfLight = s.pdfArea * distance * distance / std::abs(cosLight);
       const float weight = powerHeuristic(pdfLight, cosine * kInvPi);
       const Eigen::Vector3f contribution =
@@ -250,9 +253,9 @@ void PathIntegrator::continuePaths(std::vector<Vertex>& vertices, bool keepVerti
         }
         continue;
       }
+      if (!sampleEmitters_ && !keepVertices) continue;
+      const SurfaceSample s = shadeSurface(scene_, scene_.instances[hit.instance].mesh, hit.triangle, hit.u, hit.v);
       if (sampleEmitters_) {
-        const std::uint32_t mesh = scene_.instances[hit.instance].mesh;
-        const SurfaceSample s = shadeSurface(scene_, mesh, hit.triangle, hit.u, hit.v);
         if ((hit.frontFace || s.doubleSided) && s.emission.maxCoeff() > 0.0f) {
           const float cosLight = std::abs(scene_.frontNormal(hit.instance, hit.triangle).dot(ray.direction));
           const float pdfLight =
@@ -262,7 +265,7 @@ void PathIntegrator::continuePaths(std::vector<Vertex>& vertices, bool keepVerti
         }
       }
       Vertex v;
-      if (keepVertices && makeVertex(hit, ray.origin, ray.direction, from.throughput, &v)) {
+      if (keepVertices && makeVertex(hit, s, ray.origin, ray.direction, from.throughput, &v)) {
         v.path = from.path;
         v.random = from.random;
         next.push_back(v);

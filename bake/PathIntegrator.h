@@ -6,6 +6,7 @@
 #include "bake/Transport.h"
 #include "scene/RayTracer.h"
 #include "scene/Scene.h"
+#include "scene/Shading.h"
 
 namespace baker {
 
@@ -32,8 +33,8 @@ class PathIntegrator {
              Eigen::Vector3f* radiance, float* visibility, RayCounts* counts) const;
 
   const EmitterSampler& emitters() const { return emitters_; }
-  // How far a ray starts off the surface it leaves: relative to the point's magnitude and the
-  // scene's size, so that the same scene at any scale bakes the same.
+  // How far a ray starts off the surface it leaves: a few float steps of the point's largest
+  // coordinate or of the scene's size, so that the same scene at any scale or place bakes the same.
   float rayOffset(const Eigen::Vector3f& point) const;
 
  private:
@@ -41,8 +42,8 @@ class PathIntegrator {
   void addNextEvents(std::vector<Vertex>& vertices, Eigen::Vector3f* radiance, RayCounts* counts) const;
   void continuePaths(std::vector<Vertex>& vertices, bool keepVertices, Eigen::Vector3f* radiance,
                      RayCounts* counts) const;
-  bool makeVertex(const Hit& hit, const Eigen::Vector3f& origin, const Eigen::Vector3f& direction,
-                  const Eigen::Vector3f& throughput, Vertex* vertex) const;
+  bool makeVertex(const Hit& hit, const SurfaceSample& surface, const Eigen::Vector3f& origin,
+                  const Eigen::Vector3f& direction, const Eigen::Vector3f& throughput, Vertex* vertex) const;
 
   const Scene& scene_;
   const RayTracer& tracer_;

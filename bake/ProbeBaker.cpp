@@ -196,17 +196,22 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
   }
 
   if (settings_.projection.nonNegative) {
-    // The linear coefficients carry the moments m = G·c; re-solve them with c ≥ 0.
+    // The linear coefficients carry the moments m = G·c; re-solve them with c ≥ 0. Only
+    // quantities that cannot be negative are constrained: RGB channels, luminance Y and sky
+    // visibility, not the signed chroma Co and Cg.
+    auto constrain = [](const ChannelGroup& group, float* out) {
+      const Eigen::VectorXd linear = Eigen::Map<Eigen::VectorXf>(out, group.functions).cast<double>();
+      const Eigen::VectorXd constrained = nonNegativeProjection(group.gram, group.gram * linear);
+      for (int f = 0; f < group.functions; ++f) out[f] = float(constrained[f]);
+    };
     for (const ChannelGroup& group : groups_)
       for (int c = 0; c < group.channelCount; ++c) {
-        const int offset = basis_.coefficientOffset(group.firstChannel + c);
-        for (int q = 0; q < p; ++q) {
-          float* out = coefficients + std::size_t(q) * coefficientsPerProbe_ + offset;
-          const Eigen::VectorXd linear = Eigen::Map<Eigen::VectorXf>(out, group.functions).cast<double>();
-          const Eigen::VectorXd constrained = nonNegativeProjection(group.gram, group.gram * linear);
-          for (int f = 0; f < group.functions; ++f) out[f] = float(constrained[f]);
-        }
+        const int channel = group.firstChannel + c;
+        if (space == ColorSpace::YCoCg && channel != 0) continue;
+        for (int q = 0; q < p; ++q)
+          constrain(group, coefficients + std::size_t(q) * coefficientsPerProbe_ + basis_.coefficientOffset(channel));
       }
+    for (int q = 0; q < p; ++q) constrain(groups_[0], visibility + std::size_t(q) * visibilityPerProbe_);
   }
 }
 

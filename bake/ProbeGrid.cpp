@@ -19,7 +19,10 @@ ProbeGrid makeProbeGrid(const Eigen::AlignedBox3f& bounds, double spacing, std::
   if (spacing <= 0.0) spacing = extent.maxCoeff() > 0.0 ? extent.maxCoeff() / kDefaultProbesAlongLongestSide : 1.0;
   double cells[3];
   for (int a = 0; a < 3; ++a) {
-    cells[a] = std::max(1.0, std::ceil(extent[a] / spacing - 1e-9));
+    // A flat scene (a ground plane, a panel) has no extent across itself: one layer of probes
+    // centred on it would lie in its plane and see through it, so it gets a layer on each side.
+    const bool flat = !(extent[a] > 1e-6 * extent.maxCoeff());
+    cells[a] = flat ? 2.0 : std::max(1.0, std::ceil(extent[a] / spacing - 1e-9));
     if (cells[a] > double(maxProbes))
       throw InputError(fmt::format("spacing {} m gives {:.3g} probes along one axis of a {:.3g} m scene; the limit is {}",
                                    spacing, cells[a], extent[a], maxProbes));

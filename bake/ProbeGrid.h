@@ -20,7 +20,8 @@ struct ProbeGrid {
 constexpr int kDefaultProbesAlongLongestSide = 16;
 
 // Cells of `spacing` covering `bounds`, one probe at each cell centre, the whole grid centred
-// on the bounds: probes stay half a cell away from the outer walls of a closed room.
+// on the bounds: probes stay half a cell away from the outer walls of a closed room. An axis
+// along which the scene is flat gets two probes, half a cell to either side of it.
 // spacing <= 0 picks the default. An empty scene gets a single probe at the origin.
 // Throws InputError if the grid would exceed `maxProbes`.
 ProbeGrid makeProbeGrid(const Eigen::AlignedBox3f& bounds, double spacing, std::int64_t maxProbes);

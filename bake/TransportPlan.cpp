@@ -29,7 +29,10 @@ void turnOffEffects(std::vector<PlannedEffect>& plan, const std::vector<std::str
     PlannedEffect* e = find(plan, name);
     if (!e) {
       std::vector<std::string> keys;
-      for (const PlannedEffect& p : plan) keys.push_back(p.name);
+      for (const PlannedEffect& p : plan) {
+        keys.push_back(p.name);
+        std::replace(keys.back().begin(), keys.back().end(), '_', '-');
+      }
       throw InputError(fmt::format("--no {}: not an effect; effects are {}", given, fmt::join(keys, ", ")));
     }
     if (e->simulated) e->reason = fmt::format("turned off by --no {} ({})", given, e->reason);
@@ -43,6 +46,10 @@ TransportSettings transportSettings(std::vector<PlannedEffect>& plan, int bounce
   if (reflections && reflections->simulated && bounces == 0) {
     reflections->simulated = false;
     reflections->reason = "--bounces 0: probes see emission and sky only";
+  } else if (reflections && reflections->simulated && !simulated(plan, "punctual_lights") &&
+             !simulated(plan, "emissive_lights") && !simulated(plan, "environment")) {
+    reflections->simulated = false;
+    reflections->reason = fmt::format("nothing lights the surfaces in this bake ({})", reflections->reason);
   } else if (reflections && reflections->simulated) {
     reflections->reason += fmt::format("; up to {} diffuse reflection(s) per path", bounces);
   }

@@ -6,20 +6,20 @@
 #include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "bake/Baker.h"
 #include "bake/SphericalGaussianBasis.h"
 #include "cli/BakeOptions.h"
 #include "cli/CommandLine.h"
-#include "formats/AtomicFile.h"
-#include "formats/VdbWriter.h"
+#include "cli/ProgressBar.h"
+#include "common/Timing.h"
+#include "formats/VolumeMetadata.h"
+#include "formats/VolumeWriter.h"
 
 namespace baker {
 namespace {
 
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 }  // namespace
 
@@ -27,23 +27,33 @@ int runBakeCommand(int argc, char** argv) {
   CLI::App app{"Bake an irradiance volume for a glTF scene."};
   app.set_version_flag("--version", BAKER_VERSION);
   BakeOptions options;
-  std::string outPath;
-  bool json = false;
+  std::string outPath, format, precision = "half";
+  bool json = false, quiet = false;
   addBakeOptions(app, options);
-  app.add_option("--out", outPath, "output volume (.vdb); default: the scene's name with .vdb, here");
+  app.add_flag("--quiet", quiet, "no plan and no progress bar on stderr (errors and warnings still)");
+  app.add_option("--out", outPath,
+                 "output volume: a .vdb file, or a directory of EXR slices; default: the scene's name with .vdb "
+                 "(or _exr), here");
+  app.add_option("--format", format, "vdb or exr; default: from --out (.vdb: vdb, else exr), vdb without --out");
+  app.add_option("--precision", precision, "EXR slices: half or float")->capture_default_str();
   app.add_flag("--json", json, "print the summary as JSON on stdout");
 
   return runGuarded("baker", app, argc, argv, [&]() {
-    if (outPath.empty()) outPath = std::filesystem::path(options.scenePath).stem().string() + ".vdb";
-    requireOutputDirectory(outPath);
+    const VolumeOutput output = volumeOutput(options.scenePath, outPath, format, precision);
     const auto start = std::chrono::steady_clock::now();
-    PreparedBake prepared = prepareBake(app, options, std::cerr);
+    std::ostringstream silenced;
+    PreparedBake prepared = prepareBake(app, options, quiet ? silenced : std::cerr);
     const Basis& basis = *prepared.basis;
     const ProbeGrid& grid = prepared.grid;
 
     auto stage = std::chrono::steady_clock::now();
     BakeStats stats;
-    Volume volume = bakeVolume(*prepared.scene, *prepared.tracer, basis, grid, prepared.settings, &stats);
+    Volume volume;
+    {
+      ProgressBar bar("baking", !quiet);
+      volume = bakeVolume(*prepared.scene, *prepared.tracer, basis, grid, prepared.settings, &stats,
+                          [&](std::int64_t done, std::int64_t total) { bar.update(done, total); });
+    }
     const double bakeSeconds = secondsSince(stage);
     volume.settings["rays"] = std::to_string(options.rays);
     volume.settings["bounces"] = std::to_string(prepared.settings.transport.bounces);
@@ -54,16 +64,18 @@ int runBakeCommand(int argc, char** argv) {
     if (const auto* sg = dynamic_cast<const SphericalGaussianBasis*>(&basis))
       volume.settings["sg_sharpness"] = fmt::format("{}", sg->sharpness());
     volume.settings["scene"] = std::filesystem::path(options.scenePath).filename().string();
+    volume.settings["scene_fnv1a64"] = fileHash(options.scenePath);
 
     stage = std::chrono::steady_clock::now();
-    writeVdb(volume, basis, outPath);
+    writeVolume(volume, basis, output);
     const double writeSeconds = secondsSince(stage);
     const double totalSeconds = secondsSince(start);
     const double mrays = stats.traceSeconds > 0 ? stats.rays.total() / stats.traceSeconds * 1e-6 : 0.0;
 
     if (json) {
       nlohmann::json j = {
-          {"output", outPath},
+          {"output", output.path},
+          {"format", output.format == VolumeFormat::Vdb ? "vdb" : "exr"},
           {"basis", basis.name()},
           {"grid", {{"dims", {grid.dims.x(), grid.dims.y(), grid.dims.z()}},
                     {"origin", {grid.origin.x(), grid.origin.y(), grid.origin.z()}},
@@ -84,20 +96,23 @@ int runBakeCommand(int argc, char** argv) {
                        {"trace_and_project", stats.traceSeconds}, {"bake", bakeSeconds}, {"write", writeSeconds},
                        {"total", totalSeconds}}},
           {"mrays_per_second", mrays},
+          {"peak_memory_bytes", peakMemoryBytes()},
       };
       std::cout << j.dump(2) << "\n";
     } else {
       const RayCounts& r = stats.rays;
       std::cerr << fmt::format(
           "baked {} probes ({} × {} × {}, spacing {:.4g} m; {} relocated, {} invalid and filled) × {} rays, {} "
-          "bounce(s), in {:.2f} s ({:.1f} Mrays/s; operators {:.2f} s)\n"
+          "bounce(s), in {:.2f} s ({:.1f} Mrays/s; operators {:.2f} s; load {:.2f} s, BVH {:.2f} s, write {:.2f} "
+          "s; peak memory {:.0f} MiB)\n"
           "rays: {} probe, {} bounce, {} punctual shadow, {} emitter shadow, {} environment shadow, {} direct "
           "punctual shadow, {} validity; {} in all\n",
           stats.probes, grid.dims.x(), grid.dims.y(), grid.dims.z(), grid.spacing, stats.relocatedProbes,
           stats.invalidProbes, options.rays, prepared.settings.transport.bounces, stats.traceSeconds, mrays,
-          stats.operatorSeconds, r.probe, r.bounce, r.punctualShadow, r.emitterShadow, r.environmentShadow,
+          stats.operatorSeconds, prepared.loadSeconds, prepared.bvhSeconds, writeSeconds,
+          peakMemoryBytes() / 1048576.0, r.probe, r.bounce, r.punctualShadow, r.emitterShadow, r.environmentShadow,
           r.directPunctualShadow, r.validity, r.total());
-      std::cout << fmt::format("wrote {} ({}, {} coefficients per probe)\n", outPath, basis.name(),
+      std::cout << fmt::format("wrote {} ({}, {} coefficients per probe)\n", output.path, basis.name(),
                                basis.totalCoefficients());
     }
     return 0;

@@ -8,6 +8,7 @@
 #include "bake/BasisRegistry.h"
 #include "bake/TransportPlan.h"
 #include "common/Error.h"
+#include "common/Timing.h"
 #include "scene/GltfLoader.h"
 #include "scene/SceneCensus.h"
 
@@ -18,9 +19,6 @@ namespace {
 constexpr std::int64_t kMaxProbes = std::int64_t(1) << 27;
 constexpr int kMaxRays = 1 << 20;
 
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 }  // namespace
 
@@ -37,7 +35,8 @@ void addBakeOptions(CLI::App& app, BakeOptions& o) {
       ->capture_default_str();
   app.add_option("--no", o.turnedOff,
                  "turn an effect off (repeatable): emission, punctual-lights, emissive-lights, environment, bounces, "
-                 "alpha-filters, direct-punctual, probe-validity");
+                 "alpha-filters, direct-punctual, probe-validity")
+      ->allow_extra_args(false);
   app.add_option("--threads", o.threads, "worker threads; default: all cores (the result does not depend on it)");
   app.add_option("--sg-sharpness", o.sgSharpness, "lobe sharpness λ for sg-N bases; default: measured per N");
   app.add_option("--window", o.projection.window.hannWidth,
@@ -55,6 +54,10 @@ PreparedBake prepareBake(const CLI::App& app, const BakeOptions& o, std::ostream
   if (o.threads < 0) throw InputError(fmt::format("--threads must be positive, got {}", o.threads));
   if (app.count("--sg-sharpness") && !(o.sgSharpness > 0.0))
     throw InputError(fmt::format("--sg-sharpness must be a positive number, got {}", o.sgSharpness));
+  if (o.projection.nonNegative && o.basisName.rfind("sh-", 0) == 0)
+    throw InputError(fmt::format("--non-negative: {} functions change sign, so coefficients >= 0 do not make the "
+                                 "reconstruction non-negative; use it with ad-*, sg-* or ambient-cube",
+                                 o.basisName));
   if (o.projection.window.hannWidth < 0)
     throw InputError(fmt::format("--window must be a band count >= 1, got {}", o.projection.window.hannWidth));
 

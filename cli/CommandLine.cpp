@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <iostream>
+#include <sstream>
 
 #include "common/Error.h"
 
@@ -33,6 +34,16 @@ int runGuarded(const std::string& command, CLI::App& app, int argc, char** argv,
     std::cerr << fmt::format("{}: failed: {}\n", command, e.what());
     return 1;
   }
+}
+
+Eigen::Vector3d parseTriple(const std::string& flag, const std::string& text) {
+  std::istringstream in(text);
+  Eigen::Vector3d v;
+  char comma1 = 0, comma2 = 0;
+  if (!(in >> v.x() >> comma1 >> v.y() >> comma2 >> v.z()) || comma1 != ',' || comma2 != ',' || !(in >> std::ws).eof() ||
+      !v.allFinite())
+    throw InputError(fmt::format("{} {}: expected three finite numbers x,y,z", flag, text));
+  return v;
 }
 
 }  // namespace baker

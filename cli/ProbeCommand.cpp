@@ -11,6 +11,7 @@
 #include "cli/BakeOptions.h"
 #include "cli/CommandLine.h"
 #include "common/Error.h"
+#include "formats/VolumeSampler.h"
 
 namespace baker {
 namespace {
@@ -21,16 +22,6 @@ Eigen::Vector3f axis(int a) {
   Eigen::Vector3f n = Eigen::Vector3f::Zero();
   n[a / 2] = a % 2 == 0 ? 1.0f : -1.0f;
   return n;
-}
-
-Eigen::Vector3f parsePosition(const std::string& text) {
-  std::istringstream in(text);
-  Eigen::Vector3f p;
-  char comma1 = 0, comma2 = 0;
-  if (!(in >> p.x() >> comma1 >> p.y() >> comma2 >> p.z()) || comma1 != ',' || comma2 != ',' || !(in >> std::ws).eof() ||
-      !p.allFinite())
-    throw InputError(fmt::format("--at {}: expected three finite numbers x,y,z", text));
-  return p;
 }
 
 const char* stateName(ProbeState s) {
@@ -52,12 +43,12 @@ int runProbeCommand(int argc, char** argv) {
   std::vector<std::string> at;
   bool json = false;
   addBakeOptions(app, options);
-  app.add_option("--at", at, "probe position x,y,z in world units (repeatable)")->required();
+  app.add_option("--at", at, "probe position x,y,z in world units (repeatable)")->required()->allow_extra_args(false);
   app.add_flag("--json", json, "print the probes as JSON on stdout");
 
   return runGuarded("baker probe", app, argc, argv, [&]() {
     std::vector<Eigen::Vector3f> positions;
-    for (const std::string& text : at) positions.push_back(parsePosition(text));
+    for (const std::string& text : at) positions.push_back(parseTriple("--at", text).cast<float>());
     PreparedBake prepared = prepareBake(app, options, std::cerr);
     const Basis& basis = *prepared.basis;
     const ProbeBaker probeBaker(*prepared.scene, *prepared.tracer, basis, prepared.settings, 1);
@@ -80,20 +71,18 @@ int runProbeCommand(int argc, char** argv) {
     std::vector<ProbeSamples> samples;
     probeBaker.bake(tasks, coefficients.data(), visibility.data(), &counts, &samples);
 
+    for (float c : coefficients)
+      if (!std::isfinite(c)) throw NumericalError("a probe's coefficients are not finite: the scene's radiance overflows float");
     nlohmann::json probes = nlohmann::json::array();
     for (std::size_t i = 0; i < tasks.size(); ++i) {
       const float* c = coefficients.data() + i * probeBaker.coefficientsPerProbe();
       const float* v = visibility.data() + i * probeBaker.visibilityPerProbe();
       nlohmann::json fromBasis, fromSamples, visibilityByNormal;
-      std::vector<double> functionValues(probeBaker.visibilityPerProbe());
       for (int a = 0; a < 6; ++a) {
         const Eigen::Vector3f n = axis(a);
-        fromBasis[kAxisNames[a]] = vec(basis.reconstruct(c, n.cast<double>()).cast<float>());
+        fromBasis[kAxisNames[a]] = vec(basis.reconstruct(c, n.cast<double>()));
         fromSamples[kAxisNames[a]] = vec(sampledIrradiance(samples[i], n));
-        basis.functions(0).evaluate(n.cast<double>(), functionValues.data());
-        double sky = 0.0;
-        for (std::size_t f = 0; f < functionValues.size(); ++f) sky += functionValues[f] * v[f];
-        visibilityByNormal[kAxisNames[a]] = sky;
+        visibilityByNormal[kAxisNames[a]] = reconstructVisibility(basis, v, n.cast<double>());
       }
       double escaped = 0.0;
       for (std::size_t r = 0; r < samples[i].visibility.size(); ++r)

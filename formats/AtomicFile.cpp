@@ -40,4 +40,39 @@ void AtomicFile::commit() {
   committed_ = true;
 }
 
+AtomicDirectory::AtomicDirectory(std::string finalPath, bool (*replaceable)(const std::string& path))
+    : final_(std::move(finalPath)) {
+  while (final_.size() > 1 && final_.back() == '/') final_.pop_back();
+  if (final_.empty()) throw InputError("output path is empty");
+  std::filesystem::path parent = std::filesystem::path(final_).parent_path();
+  if (parent.empty()) parent = ".";
+  std::error_code ec;
+  if (!std::filesystem::is_directory(parent, ec))
+    throw InputError(fmt::format("{}: output directory '{}' does not exist", final_, parent.string()));
+  if (std::filesystem::exists(final_, ec) && !(std::filesystem::is_directory(final_, ec) && replaceable(final_)))
+    throw InputError(fmt::format("{}: exists and is not a volume this tool wrote; not replacing it", final_));
+  temporary_ = fmt::format("{}.tmp-{}", final_, ::getpid());
+  std::filesystem::remove_all(temporary_, ec);
+  if (!std::filesystem::create_directory(temporary_, ec))
+    throw InputError(fmt::format("{}: cannot create '{}': {}", final_, temporary_, ec.message()));
+}
+
+AtomicDirectory::~AtomicDirectory() {
+  if (!committed_) {
+    std::error_code ec;
+    std::filesystem::remove_all(temporary_, ec);
+  }
+}
+
+void AtomicDirectory::commit() {
+  std::error_code ec;
+  const std::string previous = fmt::format("{}.old-{}", final_, ::getpid());
+  const bool replacing = std::filesystem::exists(final_, ec);
+  if (replacing) std::filesystem::rename(final_, previous, ec);
+  if (!ec) std::filesystem::rename(temporary_, final_, ec);
+  if (ec) throw InputError(fmt::format("{}: cannot move the finished volume into place: {}", final_, ec.message()));
+  committed_ = true;
+  if (replacing) std::filesystem::remove_all(previous, ec);
+}
+
 }  // namespace baker

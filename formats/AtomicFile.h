@@ -23,6 +23,25 @@ class AtomicFile {
   bool committed_ = false;
 };
 
+// A directory of output files that appears under its final name only when complete, the same
+// way: writers fill temporaryPath() and call commit(). An existing directory at the final name
+// is replaced only if `replaceable` says it is one of ours (InputError otherwise).
+class AtomicDirectory {
+ public:
+  AtomicDirectory(std::string finalPath, bool (*replaceable)(const std::string& path));
+  ~AtomicDirectory();
+  AtomicDirectory(const AtomicDirectory&) = delete;
+  AtomicDirectory& operator=(const AtomicDirectory&) = delete;
+
+  const std::string& temporaryPath() const { return temporary_; }
+  void commit();
+
+ private:
+  std::string final_;
+  std::string temporary_;
+  bool committed_ = false;
+};
+
 // Throws InputError naming `path` if its directory does not exist; checked before baking so
 // that a typo costs nothing.
 void requireOutputDirectory(const std::string& path);

@@ -6,9 +6,10 @@
 
 namespace baker {
 
-// Writes `volume` as an OpenVDB file: one grid per entry of coefficientGrids(basis), voxel
-// (i,j,k) = probe (i,j,k), each grid's transform mapping index space to world space, and
-// file metadata naming the basis and the grid layout. Nothing appears at `path` on failure.
+// Writes `volume` as an OpenVDB file: one grid per entry of volumeGrids (Vec3s for three
+// components, float for one, int32 for probe_state), voxel (i,j,k) = probe (i,j,k), each
+// grid's transform mapping index space to world space. Sparse: bricks (leaves) without a
+// single valid probe are not stored. Nothing appears at `path` on failure.
 void writeVdb(const Volume& volume, const Basis& basis, const std::string& path);
 
 }  // namespace baker

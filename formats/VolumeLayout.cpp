@@ -2,21 +2,96 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "bake/Baker.h"
+
 namespace baker {
 
-std::vector<CoefficientGrid> coefficientGrids(const Basis& basis) {
-  std::vector<CoefficientGrid> grids;
+std::vector<VolumeGrid> volumeGrids(const Basis& basis, int visibilityPerProbe, bool hasProbeStates) {
+  std::vector<VolumeGrid> grids;
   if (basis.channelsShareFunctions()) {
     for (int f = 0; f < basis.coefficientCount(0); ++f)
-      grids.push_back({fmt::format("rgb_{:02}", f), true, 0, f});
-    return grids;
+      grids.push_back({fmt::format("rgb_{:02}", f), VolumeGrid::Kind::Coefficients, 3,
+                       {basis.coefficientOffset(0) + f, basis.coefficientOffset(1) + f, basis.coefficientOffset(2) + f}});
+  } else {
+    for (int c = 0; c < 3; ++c)
+      for (int f = 0; f < basis.coefficientCount(c); ++f)
+        grids.push_back({fmt::format("{}_{:02}", channelName(basis.colorSpace(), c), f),
+                         VolumeGrid::Kind::Coefficients, 1, {basis.coefficientOffset(c) + f, 0, 0}});
   }
-  for (int c = 0; c < 3; ++c)
-    for (int f = 0; f < basis.coefficientCount(c); ++f)
-      grids.push_back({fmt::format("{}_{:02}", channelName(basis.colorSpace(), c), f), false, c, f});
+  for (int f = 0; f < visibilityPerProbe; ++f)
+    grids.push_back({fmt::format("visibility_{:02}", f), VolumeGrid::Kind::Visibility, 1, {f, 0, 0}});
+  if (hasProbeStates) {
+    grids.push_back({"probe_state", VolumeGrid::Kind::ProbeState, 1, {0, 0, 0}});
+    grids.push_back({"probe_offset", VolumeGrid::Kind::ProbeOffset, 3, {0, 1, 2}});
+  }
   return grids;
 }
 
-std::string visibilityGridName(int function) { return fmt::format("visibility_{:02}", function); }
+std::string componentName(const VolumeGrid& grid, int component) {
+  if (grid.components == 1) return grid.name;
+  static const char* rgb[3] = {"R", "G", "B"};
+  static const char* xyz[3] = {"X", "Y", "Z"};
+  return grid.name + "." + (grid.kind == VolumeGrid::Kind::ProbeOffset ? xyz : rgb)[component];
+}
+
+float gridValue(const Volume& v, const VolumeGrid& grid, int component, std::int64_t probe) {
+  switch (grid.kind) {
+    case VolumeGrid::Kind::Coefficients: return v.coefficients[probe * v.coefficientsPerProbe + grid.index[component]];
+    case VolumeGrid::Kind::Visibility: return v.visibility[probe * v.visibilityPerProbe + grid.index[component]];
+    case VolumeGrid::Kind::ProbeState: return float(v.states[probe]);
+    case VolumeGrid::Kind::ProbeOffset: return v.offsets[probe][component];
+  }
+  return 0.0f;
+}
+
+void setGridValue(Volume& v, const VolumeGrid& grid, int component, std::int64_t probe, float value) {
+  switch (grid.kind) {
+    case VolumeGrid::Kind::Coefficients:
+      v.coefficients[probe * v.coefficientsPerProbe + grid.index[component]] = value;
+      return;
+    case VolumeGrid::Kind::Visibility: v.visibility[probe * v.visibilityPerProbe + grid.index[component]] = value; return;
+    case VolumeGrid::Kind::ProbeState: v.states[probe] = ProbeState(std::uint8_t(value)); return;
+    case VolumeGrid::Kind::ProbeOffset: v.offsets[probe][component] = value; return;
+  }
+}
+
+void prepareForReading(Volume& v, bool hasProbeStates) {
+  const std::size_t n = std::size_t(v.grid.probeCount());
+  v.coefficients.assign(n * v.coefficientsPerProbe, 0.0f);
+  v.visibility.assign(n * v.visibilityPerProbe, 0.0f);
+  v.states.assign(hasProbeStates ? n : 0, ProbeState::Invalid);
+  v.offsets.assign(hasProbeStates ? n : 0, Eigen::Vector3f::Zero());
+}
+
+std::int64_t brickOf(const ProbeGrid& grid, int i, int j, int k) {
+  const Eigen::Vector3i bricks = (grid.dims.array() + kBrickSize - 1) / kBrickSize;
+  return i / kBrickSize + std::int64_t(bricks.x()) * (j / kBrickSize + std::int64_t(bricks.y()) * (k / kBrickSize));
+}
+
+std::vector<bool> storedBricks(const Volume& v) {
+  const Eigen::Vector3i bricks = (v.grid.dims.array() + kBrickSize - 1) / kBrickSize;
+  const std::size_t count = std::size_t(bricks.x()) * bricks.y() * bricks.z();
+  if (v.states.empty()) return std::vector<bool>(count, true);
+  std::vector<bool> stored(count, false);
+  for (int k = 0; k < v.grid.dims.z(); ++k)
+    for (int j = 0; j < v.grid.dims.y(); ++j)
+      for (int i = 0; i < v.grid.dims.x(); ++i)
+        if (v.states[v.grid.linearIndex(i, j, k)] != ProbeState::Invalid) stored[brickOf(v.grid, i, j, k)] = true;
+  return stored;
+}
+
+void requireFiniteVolume(const Volume& v) {
+  for (const std::vector<float>* values : {&v.coefficients, &v.visibility})
+    for (std::size_t i = 0; i < values->size(); ++i)
+      if (!std::isfinite((*values)[i]))
+        throw std::runtime_error(fmt::format("internal error: probe {} has a non-finite value; nothing written",
+                                             i / std::max<std::size_t>(1, values == &v.coefficients
+                                                                              ? v.coefficientsPerProbe
+                                                                              : v.visibilityPerProbe)));
+}
 
 }  // namespace baker

@@ -1,29 +1,50 @@
 #pragma once
+#include <cstdint>
 #include <string>
 #include <vector>
 
 #include "bake/Basis.h"
+#include "bake/Volume.h"
 
 namespace baker {
 
-// How a basis's coefficients are split into named grids (or channels), the same for every
-// file format. When R, G and B share their functions, function i of all three channels is one
-// RGB vector grid "rgb_NN"; otherwise each channel's function i is a scalar grid named after
-// the channel, e.g. "Y_NN", "Co_NN".
-struct CoefficientGrid {
+// Every value a volume stores per probe, as named grids, the same for every file format:
+//  - coefficients: when R, G and B share their functions, function NN of all three channels is
+//    one RGB grid "rgb_NN"; otherwise each channel's function NN is a scalar grid named after
+//    the channel, e.g. "Y_NN", "Co_NN", "Cg_NN";
+//  - sky visibility, function NN of channel 0's set: a scalar grid "visibility_NN";
+//  - "probe_state" (0 inside geometry and filled from neighbours, 1 valid, 2 moved out of
+//    geometry) and "probe_offset" (world-space move from the grid position, three components).
+struct VolumeGrid {
+  enum class Kind { Coefficients, Visibility, ProbeState, ProbeOffset };
   std::string name;
-  bool isVector = false;  // three channels (0, 1, 2) of one function
-  int channel = 0;        // for scalar grids
-  int function = 0;       // index within the channel's function set
+  Kind kind = Kind::Coefficients;
+  int components = 1;  // 1 or 3
+  // Where component c lives in the probe's coefficients (Coefficients) or visibility values
+  // (Visibility); unused for the probe grids.
+  int index[3] = {0, 0, 0};
 };
 
-std::vector<CoefficientGrid> coefficientGrids(const Basis& basis);
+std::vector<VolumeGrid> volumeGrids(const Basis& basis, int visibilityPerProbe, bool hasProbeStates);
 
-// Sky visibility, function i of channel 0's set: a scalar grid "visibility_NN".
-std::string visibilityGridName(int function);
-// Probe validity (0 inside geometry and filled from neighbours, 1 valid, 2 moved out of
-// geometry) and the world-space offset of each probe from its grid position.
-inline constexpr const char* kProbeStateGrid = "probe_state";
-inline constexpr const char* kProbeOffsetGrid = "probe_offset";
+// Names of a grid's components where a format stores them one by one (EXR channels):
+// "rgb_00.R", "probe_offset.X", or the grid's own name for a scalar grid.
+std::string componentName(const VolumeGrid& grid, int component);
+
+float gridValue(const Volume& volume, const VolumeGrid& grid, int component, std::int64_t probe);
+// Sizes `volume`'s arrays are expected to have already (see prepareForReading).
+void setGridValue(Volume& volume, const VolumeGrid& grid, int component, std::int64_t probe, float value);
+
+// Sizes a volume's arrays for its grid and per-probe counts before a reader fills them: zeros,
+// probes Invalid (what a sparse file's missing bricks mean) when the file has probe states.
+void prepareForReading(Volume& volume, bool hasProbeStates);
+
+// Bricks of 8³ probes (OpenVDB leaves) that hold at least one probe that is not Invalid: sparse
+// formats store only these. All bricks when the volume has no probe states.
+std::vector<bool> storedBricks(const Volume& volume);
+std::int64_t brickOf(const ProbeGrid& grid, int i, int j, int k);
+
+// Writers refuse to store a NaN or an infinity (std::runtime_error: it would be a bug upstream).
+void requireFiniteVolume(const Volume& volume);
 
 }  // namespace baker

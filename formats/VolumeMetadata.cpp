@@ -1,21 +1,72 @@
 #include "formats/VolumeMetadata.h"
 
-namespace baker {
+#include <fmt/format.h>
 
-openvdb::MetaMap volumeMetadata(const Volume& volume, const Basis& basis) {
-  openvdb::MetaMap meta;
-  meta.insertMeta("baker.version", openvdb::StringMetadata(BAKER_VERSION));
-  meta.insertMeta("baker.basis", openvdb::StringMetadata(basis.name()));
-  meta.insertMeta("baker.quantity", openvdb::StringMetadata("irradiance"));
-  meta.insertMeta("baker.color_space", openvdb::StringMetadata(colorSpaceName(basis.colorSpace())));
-  meta.insertMeta("baker.coefficients_per_probe", openvdb::Int32Metadata(basis.totalCoefficients()));
-  meta.insertMeta("baker.visibility_per_probe", openvdb::Int32Metadata(volume.visibilityPerProbe));
-  const ProbeGrid& g = volume.grid;
-  meta.insertMeta("baker.dims", openvdb::Vec3IMetadata(openvdb::Vec3i(g.dims.x(), g.dims.y(), g.dims.z())));
-  meta.insertMeta("baker.origin", openvdb::Vec3DMetadata(openvdb::Vec3d(g.origin.x(), g.origin.y(), g.origin.z())));
-  meta.insertMeta("baker.spacing", openvdb::DoubleMetadata(g.spacing));
-  for (const auto& [key, value] : volume.settings) meta.insertMeta("baker.setting." + key, openvdb::StringMetadata(value));
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "common/Error.h"
+#include "formats/ReconstructionData.h"
+#include "formats/VolumeLayout.h"
+
+namespace baker {
+namespace {
+
+const char* kindName(VolumeGrid::Kind kind) {
+  switch (kind) {
+    case VolumeGrid::Kind::Coefficients: return "irradiance_coefficients";
+    case VolumeGrid::Kind::Visibility: return "sky_visibility_coefficients";
+    case VolumeGrid::Kind::ProbeState: return "probe_state";
+    case VolumeGrid::Kind::ProbeOffset: return "probe_offset";
+  }
+  return "";
+}
+
+}  // namespace
+
+std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume& volume, const Basis& basis) {
+  nlohmann::json layout = nlohmann::json::array();
+  for (const VolumeGrid& g : volumeGrids(basis, volume.visibilityPerProbe, !volume.states.empty())) {
+    nlohmann::json entry = {{"name", g.name}, {"kind", kindName(g.kind)}, {"components", g.components}};
+    if (g.kind == VolumeGrid::Kind::Coefficients || g.kind == VolumeGrid::Kind::Visibility)
+      entry["index"] = std::vector<int>(g.index, g.index + g.components);
+    layout.push_back(entry);
+  }
+  std::vector<std::pair<std::string, std::string>> meta = {
+      {"baker.version", BAKER_VERSION},
+      {"baker.format_version", std::to_string(kVolumeFormatVersion)},
+      {"baker.basis", basis.name()},
+      {"baker.quantity", "irradiance"},
+      {"baker.units",
+       "coefficients of E(n) = integral of L(w) max(0, n.w) dw: full irradiance (not E/pi) in the scene's "
+       "radiance units times steradians; glTF numbers used as they are"},
+      {"baker.visibility",
+       "coefficients, in channel 0's functions, of V(n) = (1/pi) integral of V(w) max(0, n.w) dw, V(w) = 1 where a "
+       "ray escapes the scene: 1 under open sky"},
+      {"baker.color_space", colorSpaceName(basis.colorSpace())},
+      {"baker.layout", layout.dump()},
+      {"baker.reconstruction", reconstructionData(basis).dump()},
+  };
+  for (const auto& [key, value] : volume.settings) meta.push_back({"baker.setting." + key, value});
   return meta;
+}
+
+void readSettings(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume) {
+  const std::string prefix = "baker.setting.";
+  for (const auto& [key, value] : metadata)
+    if (key.rfind(prefix, 0) == 0) volume.settings[key.substr(prefix.size())] = value;
+}
+
+std::string fileHash(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(fmt::format("{}: cannot read the file to hash it", path));
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  char buffer[1 << 16];
+  while (in) {
+    in.read(buffer, sizeof buffer);
+    for (std::streamsize i = 0; i < in.gcount(); ++i) h = (h ^ std::uint8_t(buffer[i])) * 0x100000001b3ull;
+  }
+  return fmt::format("{:016x}", h);
 }
 
 }  // namespace baker

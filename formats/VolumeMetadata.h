@@ -1,13 +1,27 @@
 #pragma once
-#include <openvdb/openvdb.h>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "bake/Basis.h"
 #include "bake/Volume.h"
 
 namespace baker {
 
-// The file-level metadata that makes a volume self-describing (keys "baker.*"); the
-// reader recovers the grid placement and basis from it.
-openvdb::MetaMap volumeMetadata(const Volume& volume, const Basis& basis);
+// The text metadata every volume file carries, whatever its format (keys "baker.*"): what the
+// values mean and in which units, the basis, its colour space, the grid layout and the data to
+// reconstruct the basis without this code (JSON), the tool version, and the bake settings under
+// "baker.setting.*". The grid placement and per-probe counts are stored natively by each format.
+std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume& volume, const Basis& basis);
+
+// The metadata format version readers check; raised when the meaning of a key changes.
+constexpr int kVolumeFormatVersion = 2;
+
+// Recovers volume.settings from "baker.setting.*" keys.
+void readSettings(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume);
+
+// A 64-bit FNV-1a hash of a file's bytes, as 16 hex digits: enough to tell a changed scene
+// from an unchanged one (not a cryptographic digest). InputError naming the file if unreadable.
+std::string fileHash(const std::string& path);
 
 }  // namespace baker

@@ -100,7 +100,7 @@ TEST_F(TransportPlan, UnknownEffectIsRefusedWithTheList) {
   writeLitScene(dir_, false, false);
   const test::ProcessResult r = test::runBaker(dir_, "lit.gltf --no sparkles");
   EXPECT_EQ(r.exitCode, 2);
-  EXPECT_NE(r.err.find("--no sparkles: not an effect; effects are emission, punctual_lights"), std::string::npos)
+  EXPECT_NE(r.err.find("--no sparkles: not an effect; effects are emission, punctual-lights"), std::string::npos)
       << r.err;
   EXPECT_EQ(test::runBaker(dir_, "lit.gltf --bounces -1").exitCode, 2);
 }

@@ -1,0 +1,453 @@
+// baker_irradiance.h — reference decoder for baker irradiance volumes. Self-contained (C++11,
+// standard library only): copy it into an engine or importer as it is.
+//
+// A volume stores, per probe, the coefficients of the irradiance E(n) = ∫ L(ω) max(0, n·ω) dω
+// in one basis ("baker.basis" in the file), channel after channel of the basis's colour space
+// (RGB, or YCoCg for ad-ycocg): channel c holds coefficientCount(c) numbers at
+// coefficientOffset(c). BasisDecoder turns one probe's numbers into RGB irradiance at a unit
+// normal n; probeNeighbourhood and blendProbes interpolate the probes around a point first.
+//
+//   baker_decode::BasisDecoder decoder("ad-ycocg");   // sg-N: pass the "sharpness" of baker.reconstruction
+//   baker_decode::Rgb e = decoder.irradiance(probeCoefficients, baker_decode::Vec3{0, 1, 0});
+//
+// The formulas are in docs/DECODERS.md; the same constants are in the file's
+// "baker.reconstruction" metadata.
+#ifndef BAKER_IRRADIANCE_H
+#define BAKER_IRRADIANCE_H
+
+#include <cmath>
+#include <cstring>
+
+namespace baker_decode {
+
+struct Vec3 {
+  double x, y, z;
+};
+
+struct Rgb {
+  double r, g, b;
+};
+
+inline Vec3 operator+(const Vec3& a, const Vec3& b) { return Vec3{a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline Vec3 operator*(double s, const Vec3& v) { return Vec3{s * v.x, s * v.y, s * v.z}; }
+inline double dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline Vec3 cross(const Vec3& a, const Vec3& b) {
+  return Vec3{a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline Vec3 normalize(const Vec3& v) { return (1.0 / std::sqrt(dot(v, v))) * v; }
+
+const double kPi = 3.14159265358979323846;
+
+// ---------------------------------------------------------------------------------------------
+// The icosahedron of Ambient Dice (Iwanicki & Sloan 2017, §2.2), in the order of the
+// coefficients. With Φ = (√5 − 1)/2, before normalising: vertices 0–3 are (±1, ±Φ, 0), 4–7
+// (0, ±1, ±Φ), 8–11 (±Φ, 0, ±1); within a group bit 0 of the index is the sign of the first
+// non-zero coordinate, bit 1 that of the second (1: negative). Vertex i ^ 3 is i's antipode.
+
+const double kIcosahedronPhi = 0.61803398874989484820;
+
+inline Vec3 icosahedronVertex(int i) {
+  const double first = (i & 1) ? -1.0 : 1.0, second = (i & 2) ? -1.0 : 1.0;
+  const double phi = kIcosahedronPhi;
+  switch (i / 4) {
+    case 0: return normalize(Vec3{first, second * phi, 0.0});
+    case 1: return normalize(Vec3{0.0, first, second * phi});
+    default: return normalize(Vec3{first * phi, 0.0, second});
+  }
+}
+
+// The frame the Bézier variants' derivative data refer to: t is the coordinate axis in which
+// the vertex has a zero coordinate, b = v̂ × t.
+inline Vec3 icosahedronTangent(int i) {
+  switch (i / 4) {
+    case 0: return Vec3{0.0, 0.0, 1.0};
+    case 1: return Vec3{1.0, 0.0, 0.0};
+    default: return Vec3{0.0, 1.0, 0.0};
+  }
+}
+inline Vec3 icosahedronBitangent(int i) { return cross(icosahedronVertex(i), icosahedronTangent(i)); }
+
+// The icosahedron triangle that contains a direction, and the direction's barycentrics in it.
+struct IcosahedronTriangle {
+  int vertex[3];
+  // b = [v̂0 v̂1 v̂2]⁻¹ d: spherical barycentrics (they sum to 1 only at the vertices).
+  double spherical[3];
+  // b / (b0 + b1 + b2): where d meets the flat face.
+  double flat[3];
+};
+
+// Mirror d into the positive octant: the triangle there has one vertex of each group, and the
+// rest of the octant is covered by the three triangles beyond its edges, each of which swaps
+// one of those vertices for another. A plane through the origin and each edge decides.
+inline IcosahedronTriangle locateOnIcosahedron(const Vec3& d) {
+  const int sx = d.x < 0.0, sy = d.y < 0.0, sz = d.z < 0.0;
+  const double ax = std::fabs(d.x), ay = std::fabs(d.y), az = std::fabs(d.z);
+  const double phi = kIcosahedronPhi, phi2 = 1.0 - kIcosahedronPhi;  // Φ² = 1 − Φ
+  int a = sx + 2 * sy, b = 4 + sy + 2 * sz, c = 8 + sx + 2 * sz;
+  // Planes through the edges BC, CA and AB of the octant's triangle (normals B×C, C×A, A×B for
+  // A = (1, Φ, 0), B = (0, 1, Φ), C = (Φ, 0, 1)); beyond one of them the far vertex is replaced.
+  // Near a vertex two tests may fail; either neighbouring triangle then contains d.
+  if (phi2 * ax - phi * ay + az <= 0.0)
+    c = b ^ 2;  // beyond AB: (0, 1, −Φ)
+  else if (-phi * ax + ay + phi2 * az <= 0.0)
+    b = a ^ 2;  // beyond CA: (1, −Φ, 0)
+  else if (ax + phi2 * ay - phi * az <= 0.0)
+    a = c ^ 1;  // beyond BC: (−Φ, 0, 1)
+
+  IcosahedronTriangle t;
+  t.vertex[0] = a, t.vertex[1] = b, t.vertex[2] = c;
+  const Vec3 v0 = icosahedronVertex(a), v1 = icosahedronVertex(b), v2 = icosahedronVertex(c);
+  const Vec3 r0 = cross(v1, v2), r1 = cross(v2, v0), r2 = cross(v0, v1);  // rows of the adjugate
+  const double determinant = dot(v0, r0);
+  t.spherical[0] = dot(d, r0) / determinant;
+  t.spherical[1] = dot(d, r1) / determinant;
+  t.spherical[2] = dot(d, r2) / determinant;
+  const double sum = t.spherical[0] + t.spherical[1] + t.spherical[2];
+  for (int k = 0; k < 3; ++k) t.flat[k] = t.spherical[k] / sum;
+  return t;
+}
+
+// Lobe i of the N spherical Gaussians sits on the spherical Fibonacci point i of N.
+inline Vec3 sphericalFibonacciAxis(int i, int n) {
+  const double z = 1.0 - (2.0 * i + 1.0) / n;
+  const double r = std::sqrt(std::fmax(0.0, 1.0 - z * z));
+  const double phi = kPi * (3.0 - std::sqrt(5.0)) * i;
+  return Vec3{r * std::cos(phi), r * std::sin(phi), z};
+}
+
+// ---------------------------------------------------------------------------------------------
+// Function sets: what one colour channel's coefficients are coefficients of.
+
+enum class FunctionSetKind {
+  SphericalHarmonics,  // (order+1)² real SH
+  IcosahedronLinear,   // 12 vertex values, linear across each triangle
+  IcosahedronLobes,    // 12 clamped-cosine lobes on the vertices
+  IcosahedronBezier,   // 36: per vertex value, ∂t, ∂b; a cubic Bézier patch per triangle
+  CubeLobes,           // 6 cos² lobes on ±x, ±y, ±z
+  SphericalGaussians,  // N lobes exp(λ(μ·n − 1))
+};
+
+enum class Barycentrics { Spherical, Flat };
+
+const int kMaxShOrder = 64;
+const int kMaxLobes = 64;
+
+struct FunctionSet {
+  FunctionSetKind kind = FunctionSetKind::SphericalHarmonics;
+  int shOrder = 0;
+  Barycentrics barycentrics = Barycentrics::Spherical;  // linear and Bézier
+  double cos2 = 0.0, cos4 = 0.0;                        // lobes: cos2·c² + cos4·c⁴, c = max(0, v̂·n)
+  int lobeCount = 0;                                    // spherical Gaussians
+  double sharpness = 0.0;
+  double axes[3 * kMaxLobes] = {};
+
+  int count() const {
+    switch (kind) {
+      case FunctionSetKind::SphericalHarmonics: return (shOrder + 1) * (shOrder + 1);
+      case FunctionSetKind::IcosahedronLinear:
+      case FunctionSetKind::IcosahedronLobes: return 12;
+      case FunctionSetKind::IcosahedronBezier: return 36;
+      case FunctionSetKind::CubeLobes: return 6;
+      case FunctionSetKind::SphericalGaussians: return lobeCount;
+    }
+    return 0;
+  }
+};
+
+namespace detail {
+
+// Real SH without the Condon–Shortley phase, polar axis z. With Q(l,m) = K(l,m)·P(l,m)(z)/sin^m θ
+// (K the orthonormalising factor) the standard recurrences of the normalised Legendre functions
+//   Q(m,m) = √((2m+1)/(2m))·Q(m−1,m−1),  Q(l,m) = A·(z·Q(l−1,m) − B·Q(l−2,m)),
+//   A = √((4l² − 1)/(l² − m²)),  B = √(((l−1)² − m²)/(4(l−1)² − 1)),
+// stay in range at any order, and sin^m θ·(cos mφ, sin mφ) is (x + iy)^m, so no angles appear.
+inline void accumulateSphericalHarmonics(int order, const float* coefficients, int arrays, const Vec3& d, double* sums) {
+  const int count = (order + 1) * (order + 1);
+  double re = 1.0, im = 0.0;                      // (x + iy)^m
+  double diagonal = std::sqrt(1.0 / (4.0 * kPi));  // Q(m,m)
+  for (int m = 0; m <= order; ++m) {
+    if (m > 0) {
+      const double nextRe = re * d.x - im * d.y;
+      im = re * d.y + im * d.x;
+      re = nextRe;
+      diagonal *= std::sqrt((2.0 * m + 1.0) / (2.0 * m));
+    }
+    double previous = 0.0, current = diagonal;
+    for (int l = m; l <= order; ++l) {
+      if (l > m) {
+        const double a = std::sqrt((4.0 * l * l - 1.0) / (double(l) * l - double(m) * m));
+        const double b = std::sqrt(((l - 1.0) * (l - 1.0) - double(m) * m) / (4.0 * (l - 1.0) * (l - 1.0) - 1.0));
+        const double next = a * (d.z * current - b * previous);
+        previous = current;
+        current = next;
+      }
+      const int centre = l * l + l;
+      for (int k = 0; k < arrays; ++k) {
+        const float* c = coefficients + k * count;
+        if (m == 0)
+          sums[k] += current * c[centre];
+        else
+          sums[k] += std::sqrt(2.0) * current * (re * c[centre + m] + im * c[centre - m]);
+      }
+    }
+  }
+}
+
+// The cubic Bézier patch of one triangle (Ambient Dice §2.3.1). Control points: c_k = f_k at
+// the corners; c_km = vf·f_k + (e_km·∇_k)/(3α) next to corner k on the edge towards m, with ∇_k
+// = ∂t·t_k + ∂b·b_k the stored gradient and e_km the unit tangent at v̂_k towards v̂_m, which for
+// neighbours (v̂_k·v̂_m = 1/√5) makes e_km·∇_k = (√5/2)·v̂_m·∇_k; the centre blends three points,
+// each of which makes the patch C1 across one edge.
+inline double bezierPatch(const IcosahedronTriangle& t, Barycentrics kind, const float* data) {
+  const double root5 = std::sqrt(5.0);
+  const bool spherical = kind == Barycentrics::Spherical;
+  const double vertexFactor = spherical ? 1.0 / root5 : 1.0;
+  const double a0 = spherical ? (root5 - 5.0) / 40.0 : -0.25;
+  const double a1 = spherical ? (11.0 * root5 - 15.0) / 40.0 : 0.25;
+  const double a2 = spherical ? root5 / 10.0 : 0.5;
+  const double alpha = 0.5 * std::sqrt((5.0 + root5) / 2.0);
+  const double* b = spherical ? t.spherical : t.flat;
+
+  double corner[3], edge[3][3];
+  Vec3 gradient[3];
+  for (int k = 0; k < 3; ++k) {
+    const float* vertexData = data + 3 * t.vertex[k];
+    corner[k] = vertexData[0];
+    gradient[k] = vertexData[1] * icosahedronTangent(t.vertex[k]) + vertexData[2] * icosahedronBitangent(t.vertex[k]);
+  }
+  for (int k = 0; k < 3; ++k)
+    for (int m = 0; m < 3; ++m)
+      edge[k][m] = vertexFactor * corner[k] + (root5 / 2.0) * dot(icosahedronVertex(t.vertex[m]), gradient[k]) / (3.0 * alpha);
+
+  double value = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    value += b[k] * b[k] * b[k] * corner[k];
+    for (int m = 0; m < 3; ++m)
+      if (m != k) value += 3.0 * b[k] * b[k] * b[m] * edge[k][m];
+  }
+  // Blend weights w_j ∝ b_{j+1}·b_{j+2} (barycentrics a rounding error below 0 count as 0); at
+  // a vertex, where all are 0, the centre term vanishes anyway.
+  double p[3], w[3];
+  for (int k = 0; k < 3; ++k) p[k] = std::fmax(0.0, b[k]);
+  const double weightSum = p[1] * p[2] + p[0] * p[2] + p[0] * p[1];
+  if (weightSum <= 0.0) return value;
+  for (int j = 0; j < 3; ++j) w[j] = p[(j + 1) % 3] * p[(j + 2) % 3] / weightSum;
+  double centre = 0.0;
+  for (int j = 0; j < 3; ++j) {
+    const int k = (j + 1) % 3, m = (j + 2) % 3;
+    centre += w[j] * (a0 * (corner[k] + corner[m]) + a1 * (edge[k][m] + edge[m][k]) + a2 * (edge[k][j] + edge[m][j]));
+  }
+  return value + 6.0 * b[0] * b[1] * b[2] * centre;
+}
+
+}  // namespace detail
+
+// Σ_i coefficients[k·count + i]·f_i(d) for k < arrays, into sums[k]: `arrays` channels that
+// share the function set, stored one after the other (R, G, B of an RGB basis).
+inline void expand(const FunctionSet& set, const float* coefficients, int arrays, const Vec3& d, double* sums) {
+  const int count = set.count();
+  for (int k = 0; k < arrays; ++k) sums[k] = 0.0;
+  switch (set.kind) {
+    case FunctionSetKind::SphericalHarmonics:
+      detail::accumulateSphericalHarmonics(set.shOrder, coefficients, arrays, d, sums);
+      return;
+    case FunctionSetKind::IcosahedronLinear: {
+      const IcosahedronTriangle t = locateOnIcosahedron(d);
+      const double* b = set.barycentrics == Barycentrics::Spherical ? t.spherical : t.flat;
+      for (int k = 0; k < arrays; ++k)
+        for (int corner = 0; corner < 3; ++corner) sums[k] += b[corner] * coefficients[k * count + t.vertex[corner]];
+      return;
+    }
+    case FunctionSetKind::IcosahedronLobes:
+      for (int i = 0; i < 12; ++i) {
+        const double c = dot(icosahedronVertex(i), d);
+        if (c <= 0.0) continue;
+        const double lobe = c * c * (set.cos2 + set.cos4 * c * c);
+        for (int k = 0; k < arrays; ++k) sums[k] += lobe * coefficients[k * count + i];
+      }
+      return;
+    case FunctionSetKind::IcosahedronBezier: {
+      const IcosahedronTriangle t = locateOnIcosahedron(d);
+      for (int k = 0; k < arrays; ++k) sums[k] = detail::bezierPatch(t, set.barycentrics, coefficients + k * count);
+      return;
+    }
+    case FunctionSetKind::CubeLobes: {
+      // Of the ± lobes of an axis only the one on d's side is non-zero; both are d[axis]² there.
+      const double axis[3] = {d.x, d.y, d.z};
+      for (int a = 0; a < 3; ++a) {
+        const int lobe = 2 * a + (axis[a] < 0.0 ? 1 : 0);
+        for (int k = 0; k < arrays; ++k) sums[k] += axis[a] * axis[a] * coefficients[k * count + lobe];
+      }
+      return;
+    }
+    case FunctionSetKind::SphericalGaussians:
+      for (int i = 0; i < set.lobeCount; ++i) {
+        const Vec3 mu{set.axes[3 * i], set.axes[3 * i + 1], set.axes[3 * i + 2]};
+        const double lobe = std::exp(set.sharpness * (dot(mu, d) - 1.0));
+        for (int k = 0; k < arrays; ++k) sums[k] += lobe * coefficients[k * count + i];
+      }
+      return;
+  }
+}
+
+inline Rgb ycocgToRgb(double y, double co, double cg) { return Rgb{y + co - cg, y + cg, y - co - cg}; }
+
+// ---------------------------------------------------------------------------------------------
+// A basis by its name in "baker.basis".
+
+class BasisDecoder {
+ public:
+  // sgSharpness: λ of an sg-N basis, the "sharpness" of its function set in
+  // "baker.reconstruction" (it depends on N and on the bake's --sg-sharpness); ignored for
+  // other bases. valid() is false for an unknown name or a missing λ.
+  explicit BasisDecoder(const char* basisName, double sgSharpness = 0.0) { valid_ = parse(basisName, sgSharpness); }
+
+  bool valid() const { return valid_; }
+  bool isYCoCg() const { return ycocg_; }
+  const FunctionSet& functions(int channel) const { return ycocg_ && channel > 0 ? chroma_ : primary_; }
+  int coefficientCount(int channel) const { return functions(channel).count(); }
+  int coefficientOffset(int channel) const {
+    int offset = 0;
+    for (int c = 0; c < channel; ++c) offset += coefficientCount(c);
+    return offset;
+  }
+  int coefficientsPerProbe() const { return coefficientOffset(3); }
+
+  // Lobe axes as listed in "baker.reconstruction" (3 numbers per lobe), in place of the
+  // spherical Fibonacci points this decoder computes itself.
+  void setLobeAxes(const double* axes) {
+    for (int i = 0; i < 3 * primary_.lobeCount; ++i) primary_.axes[i] = axes[i];
+  }
+
+  // RGB irradiance at unit normal n from one probe's coefficients (coefficientsPerProbe()).
+  Rgb irradiance(const float* coefficients, const Vec3& n) const {
+    double sums[3];
+    if (!ycocg_) {
+      expand(primary_, coefficients, 3, n, sums);
+      return Rgb{sums[0], sums[1], sums[2]};
+    }
+    expand(primary_, coefficients, 1, n, sums);
+    expand(chroma_, coefficients + primary_.count(), 2, n, sums + 1);
+    return ycocgToRgb(sums[0], sums[1], sums[2]);
+  }
+
+  // Sky visibility (1/π)∫V max(0, n·ω) dω at unit normal n from one probe's visibility
+  // coefficients, which use channel 0's functions: coefficientCount(0) of them.
+  double visibility(const float* coefficients, const Vec3& n) const {
+    double v;
+    expand(primary_, coefficients, 1, n, &v);
+    return v;
+  }
+
+ private:
+  // The digits after `prefix` in `name` as a number in [low, high], or −1.
+  static int numberAfter(const char* name, const char* prefix, int low, int high) {
+    const std::size_t length = std::strlen(prefix);
+    if (std::strncmp(name, prefix, length) != 0) return -1;
+    const char* digits = name + length;
+    if (*digits == '\0' || std::strlen(digits) > 2 || (digits[0] == '0' && digits[1] != '\0')) return -1;
+    int value = 0;
+    for (const char* p = digits; *p; ++p) {
+      if (*p < '0' || *p > '9') return -1;
+      value = 10 * value + (*p - '0');
+    }
+    return value >= low && value <= high ? value : -1;
+  }
+
+  bool parse(const char* name, double sgSharpness) {
+    const int shOrder = numberAfter(name, "sh-l", 0, kMaxShOrder);
+    const int lobes = numberAfter(name, "sg-", 1, kMaxLobes);
+    FunctionSet& f = primary_;
+    if (shOrder >= 0) {
+      f.kind = FunctionSetKind::SphericalHarmonics;
+      f.shOrder = shOrder;
+    } else if (lobes >= 1) {
+      if (!(sgSharpness > 0.0)) return false;
+      f.kind = FunctionSetKind::SphericalGaussians;
+      f.lobeCount = lobes;
+      f.sharpness = sgSharpness;
+      for (int i = 0; i < lobes; ++i) {
+        const Vec3 axis = sphericalFibonacciAxis(i, lobes);
+        f.axes[3 * i] = axis.x, f.axes[3 * i + 1] = axis.y, f.axes[3 * i + 2] = axis.z;
+      }
+    } else if (std::strcmp(name, "ad-linear") == 0) {
+      f.kind = FunctionSetKind::IcosahedronLinear;
+      f.barycentrics = Barycentrics::Flat;
+    } else if (std::strcmp(name, "ad-cos2") == 0 || std::strcmp(name, "ad-srbf") == 0) {
+      // ad-srbf is the paper's 0.7·c² + 0.3·c⁴; both lobes normalised so the 12 sum to 1, using
+      // Σ max(0, v̂·n)² = 2 and Σ max(0, v̂·n)⁴ = 6/5 over the vertices for every n.
+      const bool paper = std::strcmp(name, "ad-srbf") == 0;
+      const double w2 = paper ? 0.7 : 1.0, w4 = paper ? 0.3 : 0.0;
+      const double scale = 1.0 / (2.0 * w2 + 1.2 * w4);
+      f.kind = FunctionSetKind::IcosahedronLobes;
+      f.cos2 = scale * w2;
+      f.cos4 = scale * w4;
+    } else if (std::strcmp(name, "ad-rgb") == 0 || std::strcmp(name, "ad-rgb-flat") == 0) {
+      f.kind = FunctionSetKind::IcosahedronBezier;
+      f.barycentrics = std::strcmp(name, "ad-rgb") == 0 ? Barycentrics::Spherical : Barycentrics::Flat;
+    } else if (std::strcmp(name, "ad-ycocg") == 0) {
+      ycocg_ = true;
+      f.kind = FunctionSetKind::IcosahedronBezier;
+      f.barycentrics = Barycentrics::Spherical;
+      chroma_.kind = FunctionSetKind::IcosahedronLinear;
+      chroma_.barycentrics = Barycentrics::Spherical;
+    } else if (std::strcmp(name, "ambient-cube") == 0) {
+      f.kind = FunctionSetKind::CubeLobes;
+    } else {
+      return false;
+    }
+    return true;
+  }
+
+  bool valid_ = false;
+  bool ycocg_ = false;
+  FunctionSet primary_;  // every channel's, or Y's for YCoCg
+  FunctionSet chroma_;   // Co's and Cg's for YCoCg
+};
+
+// ---------------------------------------------------------------------------------------------
+// Trilinear interpolation between probes. Probe (i, j, k) sits at origin + spacing·(i, j, k)
+// and is stored as number i + nx·(j + ny·k). Interpolating coefficients interpolates the
+// irradiance, since reconstruction is linear in them.
+
+struct ProbeNeighbourhood {
+  long long probe[8];  // corner c: +1 along x if c & 1, along y if c & 2, along z if c & 4
+  double weight[8];
+};
+
+// The probes around `position` and their weights; outside the grid the nearest probes on its
+// boundary are used, like a texture's clamp-to-edge.
+inline ProbeNeighbourhood probeNeighbourhood(const Vec3& position, const Vec3& origin, double spacing, const int dims[3]) {
+  const double grid[3] = {(position.x - origin.x) / spacing, (position.y - origin.y) / spacing,
+                          (position.z - origin.z) / spacing};
+  int low[3], high[3];
+  double fraction[3];
+  for (int a = 0; a < 3; ++a) {
+    const double g = std::fmin(std::fmax(grid[a], 0.0), dims[a] - 1.0);
+    low[a] = int(std::floor(g));
+    if (low[a] > dims[a] - 2) low[a] = dims[a] > 1 ? dims[a] - 2 : 0;
+    high[a] = dims[a] > 1 ? low[a] + 1 : 0;
+    fraction[a] = g - low[a];
+  }
+  ProbeNeighbourhood n;
+  for (int c = 0; c < 8; ++c) {
+    const int i = (c & 1) ? high[0] : low[0], j = (c & 2) ? high[1] : low[1], k = (c & 4) ? high[2] : low[2];
+    n.probe[c] = i + (long long)dims[0] * (j + (long long)dims[1] * k);
+    n.weight[c] = ((c & 1) ? fraction[0] : 1.0 - fraction[0]) * ((c & 2) ? fraction[1] : 1.0 - fraction[1]) *
+                  ((c & 4) ? fraction[2] : 1.0 - fraction[2]);
+  }
+  return n;
+}
+
+// out[i] = Σ_c weight[c]·probes[c][i] for i < count: one interpolated probe to decode.
+inline void blendProbes(const float* const probes[8], const double weight[8], int count, float* out) {
+  for (int i = 0; i < count; ++i) {
+    double sum = 0.0;
+    for (int c = 0; c < 8; ++c) sum += weight[c] * probes[c][i];
+    out[i] = float(sum);
+  }
+}
+
+}  // namespace baker_decode
+
+#endif  // BAKER_IRRADIANCE_H

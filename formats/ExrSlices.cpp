@@ -1,0 +1,216 @@
+#include "formats/ExrSlices.h"
+
+#include <OpenImageIO/imageio.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "bake/BasisRegistry.h"
+#include "common/Error.h"
+#include "formats/AtomicFile.h"
+#include "formats/VolumeHeader.h"
+#include "formats/VolumeLayout.h"
+#include "formats/VolumeMetadata.h"
+
+namespace baker {
+namespace {
+
+constexpr const char* kManifest = "manifest.json";
+constexpr const char* kFormatName = "baker-exr-slices";
+constexpr double kHalfMax = 65504.0;
+
+std::string sliceName(int k) { return fmt::format("z{:04}.exr", k); }
+
+// The smallest power of two that brings every coefficient within half's range.
+double coefficientScale(const Volume& v, ExrPrecision precision) {
+  if (precision == ExrPrecision::Float) return 1.0;
+  double largest = 0.0;
+  for (float c : v.coefficients) largest = std::max(largest, double(std::abs(c)));
+  return largest <= kHalfMax ? 1.0 : std::exp2(std::ceil(std::log2(largest / kHalfMax)));
+}
+
+bool scaled(const VolumeGrid& g) { return g.kind == VolumeGrid::Kind::Coefficients; }
+bool alwaysFloat(const VolumeGrid& g) {
+  return g.kind == VolumeGrid::Kind::ProbeState || g.kind == VolumeGrid::Kind::ProbeOffset;
+}
+
+nlohmann::json manifestOf(const Volume& v, const Basis& basis, ExrPrecision precision, double scale,
+                          const std::vector<std::string>& channels) {
+  nlohmann::json metadata = nlohmann::json::object();
+  for (const auto& [key, value] : describingMetadata(v, basis)) metadata[key] = value;
+  std::vector<std::string> slices;
+  for (int k = 0; k < v.grid.dims.z(); ++k) slices.push_back(sliceName(k));
+  const ProbeGrid& g = v.grid;
+  return {{"format", kFormatName},
+          {"format_version", kVolumeFormatVersion},
+          {"basis", basis.name()},
+          {"dims", {g.dims.x(), g.dims.y(), g.dims.z()}},
+          {"origin", {g.origin.x(), g.origin.y(), g.origin.z()}},
+          {"spacing", g.spacing},
+          {"coefficients_per_probe", v.coefficientsPerProbe},
+          {"visibility_per_probe", v.visibilityPerProbe},
+          {"probe_states", !v.states.empty()},
+          {"precision", precision == ExrPrecision::Half ? "half" : "float"},
+          {"coefficient_scale", scale},
+          {"channels", channels},
+          {"slices", slices},
+          {"metadata", metadata}};
+}
+
+bool replaceableVolumeDirectory(const std::string& path) { return isExrSliceDirectory(path); }
+
+}  // namespace
+
+bool isExrSliceDirectory(const std::string& path) {
+  std::error_code ec;
+  return std::filesystem::is_regular_file(std::filesystem::path(path) / kManifest, ec);
+}
+
+void writeExrSlices(const Volume& volume, const Basis& basis, const std::string& directory, ExrPrecision precision) {
+  requireFiniteVolume(volume);
+  const std::vector<VolumeGrid> grids = volumeGrids(basis, volume.visibilityPerProbe, !volume.states.empty());
+  const double scale = coefficientScale(volume, precision);
+  const OIIO::TypeDesc storage = precision == ExrPrecision::Half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT;
+  const std::vector<bool> stored = storedBricks(volume);
+
+  OIIO::ImageSpec spec(volume.grid.dims.x(), volume.grid.dims.y(), 0, storage);
+  std::vector<std::pair<const VolumeGrid*, int>> channels;
+  for (const VolumeGrid& g : grids)
+    for (int c = 0; c < g.components; ++c) {
+      channels.push_back({&g, c});
+      spec.channelnames.push_back(componentName(g, c));
+      spec.channelformats.push_back(alwaysFloat(g) ? OIIO::TypeDesc::FLOAT : storage);
+    }
+  spec.nchannels = int(channels.size());
+  spec.alpha_channel = -1;
+  spec.attribute("compression", "zip");
+  const nlohmann::json manifest = manifestOf(volume, basis, precision, scale, spec.channelnames);
+  for (const auto& [key, value] : manifest["metadata"].items()) spec.attribute(key, value.get<std::string>());
+  spec.attribute("baker.dims", fmt::format("{} {} {}", volume.grid.dims.x(), volume.grid.dims.y(), volume.grid.dims.z()));
+  spec.attribute("baker.origin", fmt::format("{:.17g} {:.17g} {:.17g}", volume.grid.origin.x(), volume.grid.origin.y(),
+                                             volume.grid.origin.z()));
+  spec.attribute("baker.spacing", fmt::format("{:.17g}", volume.grid.spacing));
+  spec.attribute("baker.coefficient_scale", fmt::format("{:.17g}", scale));
+
+  AtomicDirectory out(directory, replaceableVolumeDirectory);
+  const ProbeGrid& g = volume.grid;
+  std::vector<float> pixels(std::size_t(g.dims.x()) * g.dims.y() * channels.size());
+  for (int k = 0; k < g.dims.z(); ++k) {
+    std::size_t n = 0;
+    for (int j = 0; j < g.dims.y(); ++j)
+      for (int i = 0; i < g.dims.x(); ++i) {
+        const std::int64_t p = g.linearIndex(i, j, k);
+        const bool keep = stored[brickOf(g, i, j, k)];
+        for (const auto& [grid, c] : channels)
+          pixels[n++] = keep ? float(gridValue(volume, *grid, c, p) / (scaled(*grid) ? scale : 1.0)) : 0.0f;
+      }
+    OIIO::ImageSpec slice = spec;
+    slice.attribute("baker.slice", k);
+    const std::string path = (std::filesystem::path(out.temporaryPath()) / sliceName(k)).string();
+    auto image = OIIO::ImageOutput::create("openexr");
+    if (!image || !image->open(path, slice) || !image->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) ||
+        !image->close())
+      throw InputError(fmt::format("{}: cannot write slice {}: {}", directory, k,
+                                   oneLine(image ? image->geterror() : OIIO::geterror())));
+  }
+  std::ofstream(std::filesystem::path(out.temporaryPath()) / kManifest) << manifest.dump(2) << "\n";
+  out.commit();
+}
+
+Volume readExrSlices(const std::string& path) {
+  std::filesystem::path dir = path;
+  if (dir.filename() == kManifest) dir = dir.parent_path();
+  const std::string manifestPath = (dir / kManifest).string();
+  std::ifstream in(manifestPath);
+  if (!in) throw InputError(fmt::format("{}: no {} (not an EXR slice volume)", path, kManifest));
+  nlohmann::json m;
+  try {
+    m = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(fmt::format("{}: not valid JSON: {}", manifestPath, oneLine(e.what())));
+  }
+  VolumeHeader header;
+  std::vector<std::string> slices, channelNames;
+  double scale = 1.0;
+  try {
+    if (m.at("format") != kFormatName)
+      throw InputError(fmt::format("{}: \"format\" is {}, expected \"{}\"", manifestPath, m.at("format").dump(), kFormatName));
+    header.basisName = m.at("basis").get<std::string>();
+    const auto dims = m.at("dims").get<std::vector<int>>();
+    const auto origin = m.at("origin").get<std::vector<double>>();
+    if (dims.size() != 3 || origin.size() != 3)
+      throw InputError(fmt::format("{}: \"dims\" and \"origin\" need three numbers each", manifestPath));
+    header.grid.dims = Eigen::Vector3i(dims[0], dims[1], dims[2]);
+    header.grid.origin = Eigen::Vector3d(origin[0], origin[1], origin[2]);
+    header.grid.spacing = m.at("spacing").get<double>();
+    header.coefficientsPerProbe = m.at("coefficients_per_probe").get<int>();
+    header.visibilityPerProbe = m.at("visibility_per_probe").get<int>();
+    header.hasProbeStates = m.at("probe_states").get<bool>();
+    scale = m.at("coefficient_scale").get<double>();
+    slices = m.at("slices").get<std::vector<std::string>>();
+    channelNames = m.at("channels").get<std::vector<std::string>>();
+    for (const auto& [key, value] : m.at("metadata").items()) header.text.push_back({key, value.get<std::string>()});
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(fmt::format("{}: {}", manifestPath, oneLine(e.what())));
+  }
+  if (!(scale > 0.0) || !std::isfinite(scale))
+    throw InputError(fmt::format("{}: \"coefficient_scale\" must be a positive number", manifestPath));
+  Volume volume = header.emptyVolume(manifestPath);
+  const ProbeGrid& g = volume.grid;
+  if (int(slices.size()) != g.dims.z())
+    throw InputError(fmt::format("{}: {} slices listed for {} probes along z", manifestPath, slices.size(), g.dims.z()));
+
+  const std::unique_ptr<Basis> basis = makeBasis(volume.basisName);
+  const std::vector<VolumeGrid> grids = volumeGrids(*basis, volume.visibilityPerProbe, header.hasProbeStates);
+  std::vector<float> pixels;
+  for (int k = 0; k < g.dims.z(); ++k) {
+    if (slices[k].find('/') != std::string::npos || slices[k].find('\\') != std::string::npos)
+      throw InputError(fmt::format("{}: slice name \"{}\" must be a file in the volume's directory", manifestPath, slices[k]));
+    const std::string slicePath = (dir / slices[k]).string();
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(slicePath, ec)) throw InputError(fmt::format("{}: slice file is missing", slicePath));
+    auto image = OIIO::ImageInput::open(slicePath);
+    if (!image) throw InputError(fmt::format("{}: cannot read: {}", slicePath, oneLine(OIIO::geterror())));
+    const OIIO::ImageSpec& spec = image->spec();
+    if (spec.width != g.dims.x() || spec.height != g.dims.y() || spec.depth != 1)
+      throw InputError(fmt::format("{}: {} × {} pixels, expected {} × {}", slicePath, spec.width, spec.height,
+                                   g.dims.x(), g.dims.y()));
+    const int holds = spec.get_int_attribute("baker.slice", -1);
+    if (holds != k) throw InputError(fmt::format("{}: holds slice {}, but the manifest lists it as slice {}", slicePath, holds, k));
+    std::vector<std::pair<int, std::pair<const VolumeGrid*, int>>> sources;  // channel index → grid component
+    for (const VolumeGrid& grid : grids)
+      for (int c = 0; c < grid.components; ++c) {
+        const std::string name = componentName(grid, c);
+        const auto it = std::find(spec.channelnames.begin(), spec.channelnames.end(), name);
+        if (it == spec.channelnames.end()) throw InputError(fmt::format("{}: channel '{}' is missing", slicePath, name));
+        sources.push_back({int(it - spec.channelnames.begin()), {&grid, c}});
+      }
+    pixels.resize(std::size_t(spec.width) * spec.height * spec.nchannels);
+    if (!image->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()))
+      throw InputError(fmt::format("{}: cannot read the pixels: {}", slicePath, oneLine(image->geterror())));
+    for (int j = 0; j < g.dims.y(); ++j)
+      for (int i = 0; i < g.dims.x(); ++i) {
+        const float* px = pixels.data() + (std::size_t(j) * g.dims.x() + i) * spec.nchannels;
+        const std::int64_t p = g.linearIndex(i, j, k);
+        for (const auto& [channel, target] : sources) {
+          const auto& [grid, c] = target;
+          float value = px[channel];
+          if (grid->kind == VolumeGrid::Kind::ProbeState) {
+            if (!(value == 0.0f || value == 1.0f || value == 2.0f))
+              throw InputError(fmt::format("{}: probe_state at ({}, {}) is {}; states are 0, 1 or 2", slicePath, i, j, value));
+          } else if (scaled(*grid)) {
+            value = float(double(value) * scale);
+          }
+          setGridValue(volume, *grid, c, p, value);
+        }
+      }
+  }
+  requireFiniteValues(volume, path);
+  return volume;
+}
+
+}  // namespace baker

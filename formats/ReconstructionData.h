@@ -1,0 +1,15 @@
+#pragma once
+#include <nlohmann/json.hpp>
+
+#include "bake/Basis.h"
+
+namespace baker {
+
+// Everything an importer needs to evaluate a volume's coefficients without re-deriving the
+// basis: family, colour space and its conversion to RGB, per channel the coefficient count,
+// offset and function set, and each function set's constants (SH order and convention,
+// icosahedron vertices and tangent frames, lobe axes and sharpness, ...). Files store its
+// dump() under "baker.reconstruction"; docs/DECODERS.md gives the formulas it refers to.
+nlohmann::json reconstructionData(const Basis& basis);
+
+}  // namespace baker

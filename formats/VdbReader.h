@@ -1,0 +1,12 @@
+#pragma once
+#include <string>
+
+#include "bake/Volume.h"
+
+namespace baker {
+
+// Reads an OpenVDB volume written by writeVdb. InputError naming the file and what is missing
+// or inconsistent. Use readVolume, which picks the reader from the path.
+Volume readVdb(const std::string& path);
+
+}  // namespace baker

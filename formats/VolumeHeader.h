@@ -1,0 +1,28 @@
+#pragma once
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "bake/ProbeGrid.h"
+#include "bake/Volume.h"
+
+namespace baker {
+
+// What a reader learns from a file before its values: checked once, the same for every format.
+struct VolumeHeader {
+  std::string basisName;
+  ProbeGrid grid;
+  int coefficientsPerProbe = 0;
+  int visibilityPerProbe = 0;
+  bool hasProbeStates = false;
+  std::vector<std::pair<std::string, std::string>> text;  // every "baker.*" key as text
+
+  // Checks the header against the basis it names and the limits (InputError naming `path` and
+  // the key), then returns a volume with zeroed arrays of the right sizes and the settings.
+  Volume emptyVolume(const std::string& path) const;
+};
+
+// InputError naming `path` and the probe when a value read from a file is NaN or infinite.
+void requireFiniteValues(const Volume& volume, const std::string& path);
+
+}  // namespace baker

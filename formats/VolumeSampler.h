@@ -1,0 +1,24 @@
+#pragma once
+#include <Eigen/Core>
+#include <vector>
+
+#include "bake/Basis.h"
+#include "bake/Volume.h"
+
+namespace baker {
+
+// What an engine does with a volume at a world position: the probes' coefficients (and sky
+// visibility) interpolated trilinearly between the eight probes around it, the position clamped
+// to the grid's probes (a 3D texture with clamp-to-edge addressing, sampled at texel centres).
+struct VolumeSample {
+  Eigen::Vector3d gridPosition;  // continuous probe index after clamping
+  std::vector<float> coefficients;
+  std::vector<float> visibility;
+};
+
+VolumeSample sampleVolume(const Volume& volume, const Eigen::Vector3d& world);
+
+// Sky visibility V(n) from visibility coefficients in the basis's channel-0 functions.
+double reconstructVisibility(const Basis& basis, const float* visibility, const Eigen::Vector3d& normal);
+
+}  // namespace baker

@@ -1,0 +1,308 @@
+// baker_irradiance.glsl — GLSL 4.50 decoders for baker irradiance volumes. No #version line:
+// paste or include it after the shader's own ("#version 450 core").
+//
+// Packing (docs/DECODERS.md): a probe's stored numbers, in the file's order (channel after
+// channel: R, G, B or Y, Co, Cg; coefficient NN of channel c is component c of grid rgb_NN, or
+// grid Y_NN / Co_NN / Cg_NN), four per RGBA texel: 3D texture k holds numbers 4k .. 4k+3, the
+// last one padded with 0. Sky visibility (grids visibility_NN) is packed the same way into its
+// own textures. Texel (i, j, k) of every texture is probe (i, j, k); filter GL_LINEAR, wrap
+// GL_CLAMP_TO_EDGE, no mipmaps. Interpolating coefficients interpolates the irradiance, since
+// reconstruction is linear in them, so one hardware trilinear fetch per texture gives the
+// coefficients at any point.
+//
+// bakerIrradianceX(texels, n) decodes texels already fetched (one probe, or an interpolated
+// one); bakerSampleIrradianceX(textures, uvw, n) fetches them first. Results are the full
+// irradiance E(n) = ∫ L max(0, n·ω) dω: multiply by albedo/π for diffuse radiance. n must be
+// unit length. Texture counts: sh-l1 3, sh-l2 7, ambient-cube 5, ad-linear / ad-cos2 / ad-srbf
+// 9, ad-ycocg 15; visibility: sh-l1 1, sh-l2 3, ambient-cube 2, ad-* 3, ad-ycocg 9.
+
+// Texture coordinate of a world position: probe (i, j, k) sits at origin + spacing·(i, j, k),
+// the centre of texel (i, j, k).
+vec3 bakerVolumeCoordinate(vec3 worldPosition, vec3 origin, float spacing, ivec3 dims) {
+  return ((worldPosition - origin) / spacing + 0.5) / vec3(dims);
+}
+
+// ---- Real spherical harmonics: orthonormal, polar axis z, no Condon–Shortley phase, index
+// l·l + l + m (Y(1,−1) ∝ y, Y(1,0) ∝ z, Y(1,1) ∝ x).
+
+vec4 bakerShL1Basis(vec3 n) { return vec4(0.282094792, 0.488602512 * n.y, 0.488602512 * n.z, 0.488602512 * n.x); }
+
+void bakerShL2Basis(vec3 n, out float y[9]) {
+  vec4 bands01 = bakerShL1Basis(n);
+  for (int i = 0; i < 4; ++i) y[i] = bands01[i];
+  y[4] = 1.092548431 * n.x * n.y;
+  y[5] = 1.092548431 * n.y * n.z;
+  y[6] = 0.315391565 * (3.0 * n.z * n.z - 1.0);
+  y[7] = 1.092548431 * n.x * n.z;
+  y[8] = 0.546274215 * (n.x * n.x - n.y * n.y);
+}
+
+// R, G and B of function i of a basis with `count` functions per channel.
+#define BAKER_RGB(t, count, i) vec3(t[(i) >> 2][(i) & 3], t[((count) + (i)) >> 2][((count) + (i)) & 3], \
+                                    t[(2 * (count) + (i)) >> 2][(2 * (count) + (i)) & 3])
+
+vec3 bakerIrradianceShL1(vec4 t[3], vec3 n) {
+  vec4 y = bakerShL1Basis(n);
+  return vec3(dot(t[0], y), dot(t[1], y), dot(t[2], y));
+}
+
+vec3 bakerIrradianceShL2(vec4 t[7], vec3 n) {
+  float y[9];
+  bakerShL2Basis(n, y);
+  vec3 e = vec3(0.0);
+  for (int i = 0; i < 9; ++i) e += y[i] * BAKER_RGB(t, 9, i);
+  return e;
+}
+
+float bakerVisibilityShL1(vec4 t[1], vec3 n) { return dot(t[0], bakerShL1Basis(n)); }
+
+float bakerVisibilityShL2(vec4 t[3], vec3 n) {
+  float y[9];
+  bakerShL2Basis(n, y);
+  float v = 0.0;
+  for (int i = 0; i < 9; ++i) v += y[i] * t[i >> 2][i & 3];
+  return v;
+}
+
+// ---- Ambient cube: max(0, ±axis·n)² lobes in the order +x, −x, +y, −y, +z, −z.
+
+vec3 bakerIrradianceAmbientCube(vec4 t[5], vec3 n) {
+  vec3 e = vec3(0.0);
+  for (int axis = 0; axis < 3; ++axis) {
+    int lobe = 2 * axis + (n[axis] < 0.0 ? 1 : 0);
+    e += n[axis] * n[axis] * BAKER_RGB(t, 6, lobe);
+  }
+  return e;
+}
+
+float bakerVisibilityAmbientCube(vec4 t[2], vec3 n) {
+  float v = 0.0;
+  for (int axis = 0; axis < 3; ++axis) {
+    int lobe = 2 * axis + (n[axis] < 0.0 ? 1 : 0);
+    v += n[axis] * n[axis] * t[lobe >> 2][lobe & 3];
+  }
+  return v;
+}
+
+// ---- Ambient Dice: the icosahedron in the coefficients' vertex order. With Φ = (√5 − 1)/2:
+// 0–3 (±1, ±Φ, 0), 4–7 (0, ±1, ±Φ), 8–11 (±Φ, 0, ±1); bit 0 of the index is the sign of the
+// first non-zero coordinate, bit 1 that of the second (set: negative).
+
+const float BAKER_PHI = 0.6180339887498949;
+const vec3 BAKER_ICOSAHEDRON[12] = vec3[12](
+    normalize(vec3(1.0, BAKER_PHI, 0.0)), normalize(vec3(-1.0, BAKER_PHI, 0.0)),
+    normalize(vec3(1.0, -BAKER_PHI, 0.0)), normalize(vec3(-1.0, -BAKER_PHI, 0.0)),
+    normalize(vec3(0.0, 1.0, BAKER_PHI)), normalize(vec3(0.0, -1.0, BAKER_PHI)),
+    normalize(vec3(0.0, 1.0, -BAKER_PHI)), normalize(vec3(0.0, -1.0, -BAKER_PHI)),
+    normalize(vec3(BAKER_PHI, 0.0, 1.0)), normalize(vec3(-BAKER_PHI, 0.0, 1.0)),
+    normalize(vec3(BAKER_PHI, 0.0, -1.0)), normalize(vec3(-BAKER_PHI, 0.0, -1.0)));
+
+// The tangent of vertex i's derivative frame: the axis in which the vertex has a zero
+// coordinate (z, x, y for the three groups); the bitangent is cross(vertex, tangent).
+vec3 bakerIcosahedronTangent(int i) {
+  int group = i >> 2;
+  return vec3(group == 1, group == 2, group == 0);
+}
+
+// The vertices of the triangle containing unit d. The octant's signs pick one vertex of each
+// group; planes through the origin and that triangle's edges tell whether d lies beyond one,
+// in the neighbouring triangle that swaps the far vertex.
+ivec3 bakerIcosahedronTriangle(vec3 d) {
+  ivec3 s = ivec3(lessThan(d, vec3(0.0)));
+  vec3 a = abs(d);
+  const float phi = BAKER_PHI, phi2 = 1.0 - BAKER_PHI;
+  int va = s.x + 2 * s.y, vb = 4 + s.y + 2 * s.z, vc = 8 + s.x + 2 * s.z;
+  if (phi2 * a.x - phi * a.y + a.z <= 0.0)
+    vc = vb ^ 2;
+  else if (-phi * a.x + a.y + phi2 * a.z <= 0.0)
+    vb = va ^ 2;
+  else if (a.x + phi2 * a.y - phi * a.z <= 0.0)
+    va = vc ^ 1;
+  return ivec3(va, vb, vc);
+}
+
+// b = [v0 v1 v2]⁻¹ d; they sum to 1 only at the vertices (divide by the sum for flat ones).
+vec3 bakerSphericalBarycentrics(ivec3 triangle, vec3 d) {
+  vec3 v0 = BAKER_ICOSAHEDRON[triangle.x], v1 = BAKER_ICOSAHEDRON[triangle.y], v2 = BAKER_ICOSAHEDRON[triangle.z];
+  vec3 r0 = cross(v1, v2), r1 = cross(v2, v0), r2 = cross(v0, v1);
+  return vec3(dot(d, r0), dot(d, r1), dot(d, r2)) / dot(v0, r0);
+}
+
+// Linear interpolation of vertex values in flat barycentrics (ad-linear).
+vec3 bakerIrradianceAdLinear(vec4 t[9], vec3 n) {
+  ivec3 triangle = bakerIcosahedronTriangle(n);
+  vec3 b = bakerSphericalBarycentrics(triangle, n);
+  b /= b.x + b.y + b.z;
+  return b.x * BAKER_RGB(t, 12, triangle.x) + b.y * BAKER_RGB(t, 12, triangle.y) + b.z * BAKER_RGB(t, 12, triangle.z);
+}
+
+float bakerVisibilityAdLinear(vec4 t[3], vec3 n) {
+  ivec3 triangle = bakerIcosahedronTriangle(n);
+  vec3 b = bakerSphericalBarycentrics(triangle, n);
+  b /= b.x + b.y + b.z;
+  float v = 0.0;
+  for (int k = 0; k < 3; ++k) v += b[k] * t[triangle[k] >> 2][triangle[k] & 3];
+  return v;
+}
+
+// Lobe weights cos2·c² + cos4·c⁴, c = max(0, vertex·n), for ad-cos2 and ad-srbf; normalised so
+// the 12 lobes sum to 1 (ad-srbf is the paper's 0.7c² + 0.3c⁴ over 2·0.7 + 1.2·0.3).
+const vec2 BAKER_AD_COS2_LOBE = vec2(0.5, 0.0);
+const vec2 BAKER_AD_SRBF_LOBE = vec2(0.7, 0.3) / 1.76;
+
+float bakerIcosahedronLobe(int i, vec3 n, vec2 lobe) {
+  float c = max(dot(BAKER_ICOSAHEDRON[i], n), 0.0);
+  return c * c * (lobe.x + lobe.y * c * c);
+}
+
+vec3 bakerIrradianceAdLobes(vec4 t[9], vec3 n, vec2 lobe) {
+  vec3 e = vec3(0.0);
+  for (int i = 0; i < 12; ++i) e += bakerIcosahedronLobe(i, n, lobe) * BAKER_RGB(t, 12, i);
+  return e;
+}
+
+float bakerVisibilityAdLobes(vec4 t[3], vec3 n, vec2 lobe) {
+  float v = 0.0;
+  for (int i = 0; i < 12; ++i) v += bakerIcosahedronLobe(i, n, lobe) * t[i >> 2][i & 3];
+  return v;
+}
+
+vec3 bakerIrradianceAdCos2(vec4 t[9], vec3 n) { return bakerIrradianceAdLobes(t, n, BAKER_AD_COS2_LOBE); }
+vec3 bakerIrradianceAdSrbf(vec4 t[9], vec3 n) { return bakerIrradianceAdLobes(t, n, BAKER_AD_SRBF_LOBE); }
+float bakerVisibilityAdCos2(vec4 t[3], vec3 n) { return bakerVisibilityAdLobes(t, n, BAKER_AD_COS2_LOBE); }
+float bakerVisibilityAdSrbf(vec4 t[3], vec3 n) { return bakerVisibilityAdLobes(t, n, BAKER_AD_SRBF_LOBE); }
+
+// The hybrid cubic Bézier patch in spherical barycentrics b (Ambient Dice §2.3.1), from the
+// data of the triangle's corners: data[3k + j] is datum j (value, ∂t, ∂b) of corner k. Edge
+// points c_km = f_k/√5 + (√5/2)(v_m·∇_k)/(3α), ∇_k = ∂t·t_k + ∂b·b_k, α = ½√((5 + √5)/2); the
+// centre blends three points, each making the patch C1 across one edge.
+float bakerBezierPatch(ivec3 triangle, vec3 b, float data[9]) {
+  const float root5 = 2.2360679775;
+  const float vertexFactor = 1.0 / root5;
+  const vec3 interior = vec3((root5 - 5.0) / 40.0, (11.0 * root5 - 15.0) / 40.0, root5 / 10.0);
+  const float edgeScale = root5 / (6.0 * 0.5 * sqrt((5.0 + root5) / 2.0));
+  vec3 vertex[3], gradient[3];
+  float corner[3], edge[9];  // edge[3k + m]: the control point next to corner k towards m
+  for (int k = 0; k < 3; ++k) {
+    vertex[k] = BAKER_ICOSAHEDRON[triangle[k]];
+    vec3 tangent = bakerIcosahedronTangent(triangle[k]);
+    corner[k] = data[3 * k];
+    gradient[k] = data[3 * k + 1] * tangent + data[3 * k + 2] * cross(vertex[k], tangent);
+  }
+  for (int k = 0; k < 3; ++k)
+    for (int m = 0; m < 3; ++m) edge[3 * k + m] = vertexFactor * corner[k] + edgeScale * dot(vertex[m], gradient[k]);
+
+  float value = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    value += b[k] * b[k] * b[k] * corner[k];
+    for (int m = 0; m < 3; ++m)
+      if (m != k) value += 3.0 * b[k] * b[k] * b[m] * edge[3 * k + m];
+  }
+  vec3 p = max(b, vec3(0.0));
+  vec3 q = vec3(p.y * p.z, p.x * p.z, p.x * p.y);
+  float qSum = q.x + q.y + q.z;
+  if (qSum <= 0.0) return value;  // at a vertex, where the centre term vanishes
+  vec3 w = q / qSum;
+  float centre = 0.0;
+  for (int j = 0; j < 3; ++j) {
+    int k = (j + 1) % 3, m = (j + 2) % 3;
+    centre += w[j] * (interior.x * (corner[k] + corner[m]) + interior.y * (edge[3 * k + m] + edge[3 * m + k]) +
+                      interior.z * (edge[3 * k + j] + edge[3 * m + j]));
+  }
+  return value + 6.0 * b.x * b.y * b.z * centre;
+}
+
+// ad-ycocg: Y as the Bézier patch (36 numbers), Co and Cg linear in spherical barycentrics
+// (12 each, at 36 and 48).
+vec3 bakerIrradianceAdYCoCg(vec4 t[15], vec3 n) {
+  ivec3 triangle = bakerIcosahedronTriangle(n);
+  vec3 b = bakerSphericalBarycentrics(triangle, n);
+  float data[9];
+  float co = 0.0, cg = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    for (int j = 0; j < 3; ++j) {
+      int s = 3 * triangle[k] + j;
+      data[3 * k + j] = t[s >> 2][s & 3];
+    }
+    int sco = 36 + triangle[k], scg = 48 + triangle[k];
+    co += b[k] * t[sco >> 2][sco & 3];
+    cg += b[k] * t[scg >> 2][scg & 3];
+  }
+  float y = bakerBezierPatch(triangle, b, data);
+  return vec3(y + co - cg, y + cg, y - co - cg);
+}
+
+float bakerVisibilityAdYCoCg(vec4 t[9], vec3 n) {
+  ivec3 triangle = bakerIcosahedronTriangle(n);
+  float data[9];
+  for (int k = 0; k < 3; ++k)
+    for (int j = 0; j < 3; ++j) {
+      int s = 3 * triangle[k] + j;
+      data[3 * k + j] = t[s >> 2][s & 3];
+    }
+  return bakerBezierPatch(triangle, bakerSphericalBarycentrics(triangle, n), data);
+}
+
+// ---- Fetch and decode: one trilinear fetch per texture at uvw (bakerVolumeCoordinate).
+
+#define BAKER_FETCH(textures, count, uvw, texels) \
+  vec4 texels[count];                             \
+  for (int k = 0; k < count; ++k) texels[k] = texture(textures[k], uvw)
+
+vec3 bakerSampleIrradianceShL1(sampler3D textures[3], vec3 uvw, vec3 n) {
+  BAKER_FETCH(textures, 3, uvw, t);
+  return bakerIrradianceShL1(t, n);
+}
+vec3 bakerSampleIrradianceShL2(sampler3D textures[7], vec3 uvw, vec3 n) {
+  BAKER_FETCH(textures, 7, uvw, t);
+  return bakerIrradianceShL2(t, n);
+}
+vec3 bakerSampleIrradianceAmbientCube(sampler3D textures[5], vec3 uvw, vec3 n) {
+  BAKER_FETCH(textures, 5, uvw, t);
+  return bakerIrradianceAmbientCube(t, n);
+}
+vec3 bakerSampleIrradianceAdLinear(sampler3D textures[9], vec3 uvw, vec3 n) {
+  BAKER_FETCH(textures, 9, uvw, t);
+  return bakerIrradianceAdLinear(t, n);
+}
+vec3 bakerSampleIrradianceAdCos2(sampler3D textures[9], vec3 uvw, vec3 n) {
+  BAKER_FETCH(textures, 9, uvw, t);
+  return bakerIrradianceAdCos2(t, n);
+}
+vec3 bakerSampleIrradianceAdSrbf(sampler3D textures[9], vec3 uvw, vec3 n) {
+  BAKER_FETCH(textures, 9, uvw, t);
+  return bakerIrradianceAdSrbf(t, n);
+}
+vec3 bakerSampleIrradianceAdYCoCg(sampler3D textures[15], vec3 uvw, vec3 n) {
+  BAKER_FETCH(textures, 15, uvw, t);
+  return bakerIrradianceAdYCoCg(t, n);
+}
+
+float bakerSampleVisibilityShL1(sampler3D textures[1], vec3 uvw, vec3 n) {
+  BAKER_FETCH(textures, 1, uvw, t);
+  return bakerVisibilityShL1(t, n);
+}
+float bakerSampleVisibilityShL2(sampler3D textures[3], vec3 uvw, vec3 n) {
+  BAKER_FETCH(textures, 3, uvw, t);
+  return bakerVisibilityShL2(t, n);
+}
+float bakerSampleVisibilityAmbientCube(sampler3D textures[2], vec3 uvw, vec3 n) {
+  BAKER_FETCH(textures, 2, uvw, t);
+  return bakerVisibilityAmbientCube(t, n);
+}
+float bakerSampleVisibilityAdLinear(sampler3D textures[3], vec3 uvw, vec3 n) {
+  BAKER_FETCH(textures, 3, uvw, t);
+  return bakerVisibilityAdLinear(t, n);
+}
+float bakerSampleVisibilityAdCos2(sampler3D textures[3], vec3 uvw, vec3 n) {
+  BAKER_FETCH(textures, 3, uvw, t);
+  return bakerVisibilityAdCos2(t, n);
+}
+float bakerSampleVisibilityAdSrbf(sampler3D textures[3], vec3 uvw, vec3 n) {
+  BAKER_FETCH(textures, 3, uvw, t);
+  return bakerVisibilityAdSrbf(t, n);
+}
+float bakerSampleVisibilityAdYCoCg(sampler3D textures[9], vec3 uvw, vec3 n) {
+  BAKER_FETCH(textures, 9, uvw, t);
+  return bakerVisibilityAdYCoCg(t, n);
+}

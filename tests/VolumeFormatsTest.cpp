@@ -1,0 +1,247 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+
+#include "bake/BasisRegistry.h"
+#include "common/Error.h"
+#include "formats/ExrSlices.h"
+#include "formats/VdbWriter.h"
+#include "formats/VolumeReader.h"
+#include "formats/VolumeSampler.h"
+#include "tests/GltfTestAssets.h"
+#include "tests/TestData.h"
+
+// Volumes through both formats: what goes in comes out, and broken files say what is wrong.
+namespace baker {
+namespace {
+
+// A volume of random values for `basis` over a grid that crosses brick boundaries unevenly.
+Volume randomVolume(const Basis& basis, unsigned seed, Eigen::Vector3i dims = {9, 3, 10}) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<float> normal(0.0f, 2.0f);
+  Volume v;
+  v.grid.dims = dims;
+  v.grid.origin = Eigen::Vector3d(-1.25, 0.5, 3.0);
+  v.grid.spacing = 0.375;
+  v.basisName = basis.name();
+  v.coefficientsPerProbe = basis.totalCoefficients();
+  v.visibilityPerProbe = basis.functions(0).count();
+  const std::size_t n = std::size_t(v.grid.probeCount());
+  v.coefficients.resize(n * v.coefficientsPerProbe);
+  for (float& c : v.coefficients) c = normal(rng);
+  v.visibility.resize(n * v.visibilityPerProbe);
+  for (float& c : v.visibility) c = normal(rng);
+  v.states.resize(n);
+  v.offsets.resize(n);
+  for (std::size_t p = 0; p < n; ++p) {
+    v.states[p] = ProbeState(p % 7 == 3 ? 2 : p % 11 == 5 ? 0 : 1);
+    v.offsets[p] = Eigen::Vector3f::Zero();
+    if (v.states[p] == ProbeState::Relocated) v.offsets[p] = 0.05f * Eigen::Vector3f(normal(rng), normal(rng), normal(rng));
+  }
+  v.settings["rays"] = "64";
+  return v;
+}
+
+void expectSame(const Volume& a, const Volume& b, double relative, const std::string& what) {
+  EXPECT_EQ(a.basisName, b.basisName) << what;
+  EXPECT_EQ(a.grid.dims, b.grid.dims) << what;
+  EXPECT_EQ(a.grid.origin, b.grid.origin) << what;
+  EXPECT_EQ(a.grid.spacing, b.grid.spacing) << what;
+  EXPECT_EQ(a.settings, b.settings) << what;
+  ASSERT_EQ(a.coefficients.size(), b.coefficients.size()) << what;
+  ASSERT_EQ(a.visibility.size(), b.visibility.size()) << what;
+  for (std::size_t i = 0; i < a.coefficients.size(); ++i)
+    ASSERT_NEAR(a.coefficients[i], b.coefficients[i], relative * std::abs(a.coefficients[i]) + (relative > 0 ? 1e-4 : 0))
+        << what << " coefficient " << i;
+  for (std::size_t i = 0; i < a.visibility.size(); ++i)
+    ASSERT_NEAR(a.visibility[i], b.visibility[i], relative * std::abs(a.visibility[i]) + (relative > 0 ? 1e-4 : 0))
+        << what << " visibility " << i;
+  EXPECT_TRUE(a.states == b.states) << what;
+  EXPECT_TRUE(a.offsets == b.offsets) << what << ": offsets are always stored in float";
+}
+
+TEST(VolumeFormats, EveryBasisRoundTripsThroughVdbAndExr) {
+  const std::string dir = test::makeTempDir("formats_round_trip");
+  unsigned seed = 1;
+  for (const std::string& name : basisNames()) {
+    const auto basis = makeBasis(name);
+    const Volume v = randomVolume(*basis, seed++);
+    writeVdb(v, *basis, dir + "/v.vdb");
+    expectSame(v, readVolume(dir + "/v.vdb"), 0.0, name + " vdb");
+    writeExrSlices(v, *basis, dir + "/float", ExrPrecision::Float);
+    expectSame(v, readVolume(dir + "/float"), 0.0, name + " exr float");
+    writeExrSlices(v, *basis, dir + "/half", ExrPrecision::Half);
+    expectSame(v, readVolume(dir + "/half/manifest.json"), 1.0 / 2048.0, name + " exr half");
+  }
+}
+
+// Bricks without a valid probe are not stored: they read back as zeros, probes invalid.
+TEST(VolumeFormats, BricksWithoutValidProbesAreNotStored) {
+  const std::string dir = test::makeTempDir("formats_sparse");
+  const auto basis = makeBasis("sh-l1");
+  Volume v = randomVolume(*basis, 7, {12, 4, 4});
+  for (int k = 0; k < 4; ++k)
+    for (int j = 0; j < 4; ++j)
+      for (int i = 8; i < 12; ++i) v.states[v.grid.linearIndex(i, j, k)] = ProbeState::Invalid;  // brick (1,0,0)
+  writeVdb(v, *basis, dir + "/v.vdb");
+  writeExrSlices(v, *basis, dir + "/exr", ExrPrecision::Float);
+  for (const std::string& path : {dir + "/v.vdb", dir + "/exr"}) {
+    const Volume r = readVolume(path);
+    for (int k = 0; k < 4; ++k)
+      for (int j = 0; j < 4; ++j)
+        for (int i = 0; i < 12; ++i) {
+          const std::int64_t p = v.grid.linearIndex(i, j, k);
+          if (i < 8) {
+            ASSERT_EQ(r.coefficients[p * r.coefficientsPerProbe], v.coefficients[p * v.coefficientsPerProbe]) << path;
+            continue;
+          }
+          EXPECT_EQ(r.states[p], ProbeState::Invalid) << path;
+          for (int c = 0; c < r.coefficientsPerProbe; ++c) ASSERT_EQ(r.coefficients[p * r.coefficientsPerProbe + c], 0.0f);
+        }
+  }
+}
+
+// Half stops at 65504: larger coefficients are divided by a power of two recorded in the header.
+TEST(VolumeFormats, HalfSlicesScaleValuesBeyondTheHalfRange) {
+  const std::string dir = test::makeTempDir("formats_half_scale");
+  const auto basis = makeBasis("sh-l0");
+  Volume v = randomVolume(*basis, 3, {2, 2, 2});
+  v.coefficients[0] = 1.0e6f;
+  v.coefficients[4] = -3.0e5f;
+  writeExrSlices(v, *basis, dir + "/exr", ExrPrecision::Half);
+  const nlohmann::json manifest = nlohmann::json::parse(std::ifstream(dir + "/exr/manifest.json"));
+  EXPECT_EQ(manifest["coefficient_scale"].get<double>(), 16.0);  // 1e6 / 65504 = 15.3
+  const Volume r = readVolume(dir + "/exr");
+  EXPECT_NEAR(r.coefficients[0], 1.0e6f, 1.0e6f / 1024.0f);
+  EXPECT_NEAR(r.coefficients[4], -3.0e5f, 3.0e5f / 1024.0f);
+  for (float c : r.coefficients) EXPECT_TRUE(std::isfinite(c));
+}
+
+// At a probe the sample is that probe; between probes it is the trilinear mix, so E is too
+// (reconstruction is linear in the coefficients); outside it clamps to the border.
+TEST(VolumeFormats, SampleInterpolatesLikeA3dTexture) {
+  const auto basis = makeBasis("ad-ycocg");
+  const Volume v = randomVolume(*basis, 11, {3, 2, 2});
+  const Eigen::Vector3d n = Eigen::Vector3d(0.3, -0.5, 0.8).normalized();
+  auto probeE = [&](int i, int j, int k) { return basis->reconstruct(v.probe(v.grid.linearIndex(i, j, k)), n); };
+  auto sampledE = [&](const Eigen::Vector3d& world) {
+    const VolumeSample s = sampleVolume(v, world);
+    return basis->reconstruct(s.coefficients.data(), n);
+  };
+  EXPECT_TRUE(sampledE(v.grid.position(1, 1, 0)).isApprox(probeE(1, 1, 0), 1e-6f));
+  const Eigen::Vector3f mid = sampledE(0.5 * (v.grid.position(1, 0, 1) + v.grid.position(2, 0, 1)));
+  EXPECT_TRUE(mid.isApprox(0.5f * (probeE(1, 0, 1) + probeE(2, 0, 1)), 1e-5f));
+  const Eigen::Vector3d corner = v.grid.position(0, 0, 0) + v.grid.spacing * Eigen::Vector3d(0.25, 0.5, 0.75);
+  Eigen::Vector3f expected = Eigen::Vector3f::Zero();
+  for (int c = 0; c < 8; ++c) {
+    const int i = c & 1, j = (c >> 1) & 1, k = c >> 2;
+    expected += float((i ? 0.25 : 0.75) * (j ? 0.5 : 0.5) * (k ? 0.75 : 0.25)) * probeE(i, j, k);
+  }
+  EXPECT_TRUE(sampledE(corner).isApprox(expected, 1e-5f));
+  EXPECT_TRUE(sampledE(v.grid.position(2, 1, 1) + Eigen::Vector3d(10, 10, 10)).isApprox(probeE(2, 1, 1), 1e-6f));
+}
+
+std::string errorOf(const std::string& path) {
+  try {
+    readVolume(path);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(VolumeFormats, BrokenFilesAreNamedWithWhatIsWrong) {
+  const std::string dir = test::makeTempDir("formats_broken");
+  const auto basis = makeBasis("sh-l2");
+  const Volume v = randomVolume(*basis, 5);
+  writeVdb(v, *basis, dir + "/v.vdb");
+  const auto size = std::filesystem::file_size(dir + "/v.vdb");
+  std::filesystem::copy_file(dir + "/v.vdb", dir + "/cut.vdb");
+  std::filesystem::resize_file(dir + "/cut.vdb", size / 2);
+  EXPECT_NE(errorOf(dir + "/cut.vdb").find(dir + "/cut.vdb"), std::string::npos) << errorOf(dir + "/cut.vdb");
+  std::ofstream(dir + "/junk.vdb") << "not a volume";
+  EXPECT_NE(errorOf(dir + "/junk.vdb").find("not a readable OpenVDB volume"), std::string::npos);
+  EXPECT_NE(errorOf(dir + "/none.vdb").find("does not exist"), std::string::npos);
+
+  writeExrSlices(v, *basis, dir + "/exr", ExrPrecision::Half);
+  std::filesystem::copy(dir + "/exr", dir + "/cut_exr");
+  const std::string slice = dir + "/cut_exr/z0004.exr";
+  std::filesystem::resize_file(slice, std::filesystem::file_size(slice) / 2);
+  EXPECT_NE(errorOf(dir + "/cut_exr").find("z0004.exr"), std::string::npos) << errorOf(dir + "/cut_exr");
+  std::filesystem::copy(dir + "/exr", dir + "/gap_exr");
+  std::filesystem::remove(dir + "/gap_exr/z0002.exr");
+  EXPECT_NE(errorOf(dir + "/gap_exr").find("z0002.exr: slice file is missing"), std::string::npos);
+  std::filesystem::copy(dir + "/exr", dir + "/bad_manifest");
+  std::ofstream(dir + "/bad_manifest/manifest.json") << "{\"format\": \"baker-exr-slices\", \"basis\": \"sh-l2\"}";
+  EXPECT_NE(errorOf(dir + "/bad_manifest").find("manifest.json"), std::string::npos) << errorOf(dir + "/bad_manifest");
+  std::filesystem::copy(dir + "/exr", dir + "/other_slice");
+  std::filesystem::copy_file(dir + "/exr/z0000.exr", dir + "/other_slice/z0001.exr",
+                             std::filesystem::copy_options::overwrite_existing);
+  EXPECT_NE(errorOf(dir + "/other_slice").find("z0001.exr: holds slice 0, but the manifest lists it as slice 1"),
+            std::string::npos)
+      << errorOf(dir + "/other_slice");
+}
+
+// The files are ordinary OpenVDB and OpenEXR: the standard tools read them.
+TEST(VolumeFormats, StandardToolsReadTheFiles) {
+  const std::string dir = test::makeTempDir("formats_tools");
+  const auto basis = makeBasis("ad-ycocg");
+  const Volume v = randomVolume(*basis, 9);
+  writeVdb(v, *basis, dir + "/v.vdb");
+  writeExrSlices(v, *basis, dir + "/exr", ExrPrecision::Half);
+  if (std::system("command -v vdb_print > /dev/null") != 0 || std::system("command -v exrheader > /dev/null") != 0)
+    GTEST_SKIP() << "vdb_print or exrheader is not installed (Debian libopenvdb-tools, openexr)";
+  EXPECT_EQ(std::system(("vdb_print -l '" + dir + "/v.vdb' > '" + dir + "/vdb.txt' 2>&1").c_str()), 0);
+  EXPECT_EQ(std::system(("exrheader '" + dir + "/exr/z0000.exr' > '" + dir + "/exr.txt' 2>&1").c_str()), 0);
+  std::stringstream vdb, exr;
+  vdb << std::ifstream(dir + "/vdb.txt").rdbuf();
+  exr << std::ifstream(dir + "/exr.txt").rdbuf();
+  EXPECT_NE(vdb.str().find("Y_00"), std::string::npos) << vdb.str();
+  EXPECT_NE(vdb.str().find("baker.basis"), std::string::npos);
+  EXPECT_NE(exr.str().find("Co_11"), std::string::npos) << exr.str();
+  EXPECT_NE(exr.str().find("baker.basis"), std::string::npos);
+}
+
+// A bake written as EXR slices, then `inspect` and `sample` on it, as a user would.
+TEST(VolumeFormats, InspectAndSampleReadEitherFormat) {
+  const std::string dir = test::makeTempDir("formats_cli");
+  test::GltfBuilder gltf;
+  const int emitter = gltf.material({{"emissiveFactor", {1.0, 0.5, 0.25}}, {"doubleSided", true}});
+  gltf.node({{"mesh", test::squareMesh(gltf, 2.0f, emitter)}});
+  gltf.write(dir, "panel");
+  for (const std::string& out : {std::string("panel_exr"), std::string("panel.vdb")}) {
+    const test::ProcessResult bake = test::runBaker(dir, "panel.gltf --spacing 0.5 --rays 64 --basis ad-srbf --out " + out);
+    ASSERT_EQ(bake.exitCode, 0) << bake.err;
+    const test::ProcessResult inspect = test::runBaker(dir, "inspect " + out + " --json");
+    ASSERT_EQ(inspect.exitCode, 0) << inspect.err;
+    const nlohmann::json info = nlohmann::json::parse(inspect.out);
+    EXPECT_EQ(info["basis"], "ad-srbf");
+    EXPECT_EQ(info["format"], out == "panel.vdb" ? "vdb" : "exr");
+    EXPECT_GT(info["bytes"].get<std::int64_t>(), 0);
+    EXPECT_EQ(info["probes"].get<std::int64_t>(), info["dims"][0].get<int>() * info["dims"][1].get<int>() * info["dims"][2].get<int>());
+    EXPECT_EQ(info["grids"][0]["name"], "rgb_00");
+
+    const test::ProcessResult sample = test::runBaker(dir, "sample " + out + " --at 1,1,0.3 --normal 0,0,-1 --json");
+    ASSERT_EQ(sample.exitCode, 0) << sample.err;
+    const nlohmann::json s = nlohmann::json::parse(sample.out);
+    const Volume volume = readVolume(dir + "/" + out);
+    const auto basis = basisOf(volume);
+    const VolumeSample expected = sampleVolume(volume, {1, 1, 0.3});
+    const Eigen::Vector3f e = basis->reconstruct(expected.coefficients.data(), Eigen::Vector3d(0, 0, -1));
+    for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(s["irradiance"][c].get<float>(), e[c]) << out;
+    EXPECT_GT(e.x(), 0.0f) << "the panel below lights a normal facing it";
+  }
+  const test::ProcessResult missing = test::runBaker(dir, "sample nothing.vdb --at 0,0,0 --normal 0,1,0");
+  EXPECT_EQ(missing.exitCode, 2);
+  EXPECT_NE(missing.err.find("nothing.vdb: volume file does not exist"), std::string::npos) << missing.err;
+  const test::ProcessResult zero = test::runBaker(dir, "sample panel.vdb --at 0,0,0 --normal 0,0,0");
+  EXPECT_EQ(zero.exitCode, 2);
+}
+
+}  // namespace
+}  // namespace baker
