@@ -8,6 +8,7 @@
 #include <chrono>
 #include <vector>
 
+#include "bake/MemoryEstimate.h"
 #include "bake/ProbeValidity.h"
 #include "common/Error.h"
 
@@ -25,6 +26,7 @@ Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basi
                   const BakeSettings& settings, BakeStats* stats,
                   const std::function<void(std::int64_t, std::int64_t)>& progress) {
   if (settings.rays <= 0) throw InputError(fmt::format("--rays must be positive, got {}", settings.rays));
+  requireVolumeFitsInMemory(grid, basis, physicalMemoryBytes());
   const auto start = std::chrono::steady_clock::now();
   const ProbeBaker probeBaker(scene, tracer, basis, settings, kRotations);
   const auto operatorsBuilt = std::chrono::steady_clock::now();
@@ -108,6 +110,7 @@ Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basi
     }
     stats->conditionNumber = probeBaker.conditionNumber();
     stats->shOrder = probeBaker.shOrder();
+    stats->projectionSeconds = probeBaker.projectionSeconds();
     stats->operatorSeconds = std::chrono::duration<double>(operatorsBuilt - start).count();
     stats->traceSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - operatorsBuilt).count();
   }

@@ -24,7 +24,8 @@ struct BakeStats {
   double conditionNumber = 0.0;  // worst of the basis's Gram matrices
   int shOrder = 0;               // SH order the samples are fitted with on their way to the basis
   double operatorSeconds = 0.0;  // building the projection operators
-  double traceSeconds = 0.0;     // tracing and projecting every brick
+  double traceSeconds = 0.0;     // tracing and projecting every brick (wall)
+  double projectionSeconds = 0.0;  // of which projecting, summed over threads
 };
 
 // Bakes every probe of `grid`: each traces settings.rays directions (one path each, see

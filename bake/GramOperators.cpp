@@ -8,6 +8,7 @@
 
 #include "bake/ProjectionOperator.h"
 #include "bake/SphereQuadrature.h"
+#include "bake/SphericalGaussianBasis.h"
 #include "bake/SphericalHarmonics.h"
 #include "common/Error.h"
 
@@ -15,6 +16,13 @@ namespace baker {
 namespace {
 
 constexpr double kMaxConditionNumber = 1e12;
+// Every exact integral is promised to 1e-9. Each function's squared norm, the sharpest
+// integrand of the Gram matrix, is integrated again at this finer order to hold to that.
+constexpr int kCheckQuadratureOrder = 24;
+constexpr double kMaxQuadratureDisagreement = 1e-9;
+// Refused, not regularised: an engine reconstructs with the basis's own functions, so
+// coefficients from a damped inverse would stand for a different function than they claim.
+constexpr const char* kRefusal = "baker refuses such a basis rather than regularising it";
 
 // The samples of every function of `f` at the quadrature's directions, one row per direction.
 Eigen::MatrixXd sampleFunctions(const SphericalFunctions& f, const DirectionSet& q) {
@@ -28,6 +36,32 @@ Eigen::MatrixXd sampleFunctions(const SphericalFunctions& f, const DirectionSet&
 }
 
 Eigen::VectorXd weightsOf(const DirectionSet& q) { return Eigen::Map<const Eigen::VectorXd>(q.weights.data(), q.size()); }
+
+// ∫ f_i² dω for every function, with the piecewise quadrature of `order`.
+Eigen::VectorXd squaredNorms(const SphericalFunctions& f, int order) {
+  const DirectionSet q = piecewiseSphereQuadrature(order, f.kinkPlanes());
+  return sampleFunctions(f, q).cwiseAbs2().transpose() * weightsOf(q);
+}
+
+// Lobes far sharper than a quadrature piece fall between its nodes: the Gram matrix comes out
+// wrong, and often still well conditioned, so only a second, finer rule can tell.
+void requireResolvedByQuadrature(const SphericalFunctions& f, const Eigen::MatrixXd& gram, const std::string& label) {
+  const Eigen::VectorXd finer = squaredNorms(f, kCheckQuadratureOrder);
+  const double disagreement = (gram.diagonal() - finer).cwiseAbs().maxCoeff() / finer.cwiseAbs().maxCoeff();
+  if (!(disagreement <= kMaxQuadratureDisagreement))
+    throw NumericalError(fmt::format("{}: the functions are too sharp to integrate exactly (their norms change by "
+                                     "{:.2g} between quadrature orders {} and {}, more than {:.0e}); {}",
+                                     label, disagreement, kExactQuadratureOrder, kCheckQuadratureOrder,
+                                     kMaxQuadratureDisagreement, kRefusal));
+}
+
+// Names the function set in messages; for spherical Gaussians with the sharpness that decides
+// whether they can be integrated and told apart.
+std::string describe(const SphericalFunctions& f, const std::string& label) {
+  if (const auto* lobes = dynamic_cast<const SphericalGaussians*>(&f))
+    return fmt::format("{} with --sg-sharpness {}", label, lobes->sharpness());
+  return label;
+}
 
 }  // namespace
 
@@ -63,15 +97,17 @@ Eigen::MatrixXd invertSymmetric(const Eigen::MatrixXd& matrix, const std::string
   const double condition = smallest > 0.0 ? largest / smallest : std::numeric_limits<double>::infinity();
   if (conditionNumber) *conditionNumber = condition;
   if (!(condition <= kMaxConditionNumber))
-    throw NumericalError(fmt::format("{}: the Gram matrix is numerically singular (condition number {:.3g} > {:.0e})",
-                                     label, condition, kMaxConditionNumber));
+    throw NumericalError(fmt::format("{}: the Gram matrix is numerically singular (condition number {:.3g} > {:.0e}): "
+                                     "the functions are too broad or too alike to tell apart; {}",
+                                     label, condition, kMaxConditionNumber, kRefusal));
   return eigen.eigenvectors() * eigen.eigenvalues().cwiseInverse().asDiagonal() * eigen.eigenvectors().transpose();
 }
 
 GramOperators::GramOperators(const SphericalFunctions& functions, std::string label)
-    : functions_(functions), label_(std::move(label)) {
+    : functions_(functions), label_(describe(functions, label)) {
   gram_ = innerProducts(functions, functions);
   gram_ = 0.5 * (gram_ + gram_.transpose());  // exact symmetry, not rounding-level
+  requireResolvedByQuadrature(functions, gram_, label_);
   inverse_ = invertSymmetric(gram_, label_, &condition_);
 }
 

@@ -42,7 +42,9 @@ struct ShReproduction {
 class GramOperators {
  public:
   // `functions` must outlive this object (SH moments are computed on demand).
-  // Throws NumericalError naming `label` when G is numerically singular.
+  // Throws NumericalError naming `label` (and an SG set's sharpness) when the functions are too
+  // sharp for the exact quadrature to resolve, or G is numerically singular: such a basis is
+  // refused, never regularised.
   GramOperators(const SphericalFunctions& functions, std::string label);
 
   const Eigen::MatrixXd& gram() const { return gram_; }

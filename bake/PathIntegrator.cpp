@@ -81,7 +81,10 @@ void PathIntegrator::trace(const Eigen::Vector3f& position, std::uint64_t probeI
                            int count, Eigen::Vector3f* radiance, float* visibility, RayCounts* counts) const {
   const Environment& sky = scene_.environment;
   const bool seeSky = settings_.environment && sky.emits();
-  std::vector<Vertex> vertices;
+  // Scratch space reused from probe to probe on each thread: a bake traces millions of short
+  // wavefronts, and allocating their arrays each time costs as much as shading them.
+  thread_local std::vector<Vertex> vertices;
+  vertices.clear();
   Hit hits[8];
   for (int first = 0; first < count; first += 8) {
     const int n = std::min(8, count - first);
@@ -123,11 +126,18 @@ void PathIntegrator::addNextEvents(std::vector<Vertex>& vertices, Eigen::Vector3
     int path;
     Eigen::Vector3f contribution;
   };
-  std::vector<Ray> rays;
-  std::vector<Pending> pending;
+  thread_local std::vector<Ray> rays;
+  thread_local std::vector<Pending> pending;
+  thread_local std::unique_ptr<bool[]> blocked;
+  thread_local std::size_t blockedCapacity = 0;
+  rays.clear();
+  pending.clear();
   auto resolve = [&](std::int64_t* counter) {
     if (rays.empty()) return;
-    const std::unique_ptr<bool[]> blocked(new bool[rays.size()]);
+    if (blockedCapacity < rays.size()) {
+      blockedCapacity = 2 * rays.size();
+      blocked.reset(new bool[blockedCapacity]);
+    }
     tracer_.occluded(rays.data(), int(rays.size()), blocked.get());
     for (std::size_t k = 0; k < rays.size(); ++k)
       if (!blocked[k]) radiance[pending[k].path] += pending[k].contribution;
@@ -155,7 +165,8 @@ void PathIntegrator::addNextEvents(std::vector<Vertex>& vertices, Eigen::Vector3
           if (light.type == PunctualLight::Type::Spot) irradiance *= light.spotFalloff(-toLight.dot(light.direction));
         }
         const float cosine = v.normal.dot(toLight);
-        if (cosine <= 0.0f || !(irradiance.maxCoeff() > 0.0f)) continue;
+        // A light almost on the surface can exceed single precision: dropped, as at probes.
+        if (cosine <= 0.0f || !(irradiance.maxCoeff() > 0.0f) || !irradiance.allFinite()) continue;
         rays.push_back({origin, toLight, 0.0f, distance});
         pending.push_back({v.path, reflect.cwiseProduct(irradiance) * cosine});
       }
@@ -213,9 +224,14 @@ void PathIntegrator::addNextEvents(std::vector<Vertex>& vertices, Eigen::Vector3
 
 void PathIntegrator::continuePaths(std::vector<Vertex>& vertices, bool keepVertices, Eigen::Vector3f* radiance,
                                    RayCounts* counts) const {
-  std::vector<Vertex> survivors;
-  std::vector<Ray> rays;
-  std::vector<float> bsdfPdf;
+  thread_local std::vector<Vertex> survivors;
+  thread_local std::vector<Ray> rays;
+  thread_local std::vector<float> bsdfPdf;
+  thread_local std::vector<Vertex> next;
+  survivors.clear();
+  rays.clear();
+  bsdfPdf.clear();
+  next.clear();
   for (Vertex& v : vertices) {
     const float xi1 = v.random.uniform(), xi2 = v.random.uniform();
     const Eigen::Vector3f direction = cosineDirection(v.normal, xi1, xi2);
@@ -235,7 +251,6 @@ void PathIntegrator::continuePaths(std::vector<Vertex>& vertices, bool keepVerti
   }
 
   const Environment& sky = scene_.environment;
-  std::vector<Vertex> next;
   Hit hits[8];
   for (std::size_t first = 0; first < rays.size(); first += 8) {
     const int n = int(std::min<std::size_t>(8, rays.size() - first));

@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <numeric>
 
@@ -159,6 +160,7 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
     }
   }
 
+  const auto projectionStart = std::chrono::steady_clock::now();
   for (const Block& block : blocks) {
     const int base = 4 * block.first;
     for (const ChannelGroup& group : groups_) {
@@ -213,6 +215,9 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
       }
     for (int q = 0; q < p; ++q) constrain(groups_[0], visibility + std::size_t(q) * visibilityPerProbe_);
   }
+  projectionNanoseconds_ += std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() -
+                                                                                 projectionStart)
+                                .count();
 }
 
 }  // namespace baker

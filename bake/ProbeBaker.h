@@ -1,5 +1,6 @@
 #pragma once
 #include <Eigen/Core>
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -73,6 +74,8 @@ class ProbeBaker {
   int shOrder() const { return shOrder_; }
   double conditionNumber() const { return condition_; }
   const PathIntegrator& integrator() const { return integrator_; }
+  // Time spent in the projection (matrix products and constrained solves), summed over threads.
+  double projectionSeconds() const { return projectionNanoseconds_.load() * 1e-9; }
 
   // coefficients: tasks.size() × coefficientsPerProbe(); visibility: × visibilityPerProbe().
   // `samples`, when given, receives each task's samples.
@@ -92,6 +95,7 @@ class ProbeBaker {
   int visibilityPerProbe_ = 0;
   int shOrder_ = 0;
   double condition_ = 0.0;
+  mutable std::atomic<std::int64_t> projectionNanoseconds_{0};
 };
 
 }  // namespace baker

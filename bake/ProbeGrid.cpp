@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <limits>
 
 #include "common/Error.h"
 
@@ -22,7 +23,10 @@ ProbeGrid makeProbeGrid(const Eigen::AlignedBox3f& bounds, double spacing, std::
     // A flat scene (a ground plane, a panel) has no extent across itself: one layer of probes
     // centred on it would lie in its plane and see through it, so it gets a layer on each side.
     const bool flat = !(extent[a] > 1e-6 * extent.maxCoeff());
-    cells[a] = flat ? 2.0 : std::max(1.0, std::ceil(extent[a] / spacing - 1e-9));
+    // The bounds are floats, so an extent of a whole number of spacings can come out a few float
+    // steps longer, at any scale; that must not add a layer of probes.
+    const double rounding = 4.0 * std::numeric_limits<float>::epsilon() * std::max(std::abs(lo[a]), std::abs(hi[a]));
+    cells[a] = flat ? 2.0 : std::max(1.0, std::ceil((extent[a] - rounding) / spacing - 1e-9));
     if (cells[a] > double(maxProbes))
       throw InputError(fmt::format("spacing {} m gives {:.3g} probes along one axis of a {:.3g} m scene; the limit is {}",
                                    spacing, cells[a], extent[a], maxProbes));

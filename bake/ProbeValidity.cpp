@@ -8,6 +8,15 @@
 #include "bake/DirectionSet.h"
 
 namespace baker {
+
+const char* probeStateName(ProbeState state) {
+  switch (state) {
+    case ProbeState::Valid: return "valid";
+    case ProbeState::Relocated: return "relocated";
+    case ProbeState::Invalid: return "invalid";
+  }
+  return "unknown";
+}
 namespace {
 
 // Re-tests per probe: the nearest back faces are the likely ways out, and a probe deep inside
@@ -28,19 +37,34 @@ struct BackfaceHit {
   int direction;
 };
 
-std::vector<BackfaceHit> traceBackfaces(const RayTracer& tracer, const Eigen::Vector3f& origin,
+// How far behind the probe its test rays start, in float steps of its coordinates (or of the
+// spacing, near the origin). A ray starting exactly on a surface does not hit it, so a probe a
+// grid put on a floor or an edge would see the sky through it. Started a little behind, every
+// ray that leaves into a surface meets its back face at distance ~0: the probe reads as inside,
+// and is moved off through that face like any other.
+float startBehind(const Eigen::Vector3f& position, float spacing) {
+  return kMarginSteps * std::numeric_limits<float>::epsilon() * std::max(position.cwiseAbs().maxCoeff(), spacing);
+}
+
+std::vector<BackfaceHit> traceBackfaces(const RayTracer& tracer, const Eigen::Vector3f& origin, float behind,
                                         const std::vector<Eigen::Vector3f>& directions, std::int64_t* raysTraced) {
   constexpr int kPacket = 8;
   std::vector<BackfaceHit> backfaces;
+  Ray rays[kPacket];
   Hit hits[kPacket];
-  const int rays = int(directions.size());
-  for (int first = 0; first < rays; first += kPacket) {
-    const int count = std::min(kPacket, rays - first);
-    tracer.intersect8(origin, directions.data() + first, count, hits);
-    for (int i = 0; i < count; ++i)
-      if (!hits[i].missed() && !hits[i].frontFace) backfaces.push_back({hits[i].distance, first + i});
+  const int count = int(directions.size());
+  for (int first = 0; first < count; first += kPacket) {
+    const int packet = std::min(kPacket, count - first);
+    for (int i = 0; i < packet; ++i) {
+      const Eigen::Vector3f& d = directions[first + i];
+      rays[i] = {origin - behind * d, d, 0.0f, std::numeric_limits<float>::infinity()};
+    }
+    tracer.intersect8(rays, packet, hits);
+    for (int i = 0; i < packet; ++i)
+      if (!hits[i].missed() && !hits[i].frontFace)
+        backfaces.push_back({std::max(0.0f, hits[i].distance - behind), first + i});
   }
-  if (raysTraced) *raysTraced += rays;
+  if (raysTraced) *raysTraced += count;
   return backfaces;
 }
 
@@ -69,7 +93,8 @@ ProbePlacement placeProbe(const RayTracer& tracer, const Eigen::Vector3f& gridPo
                           const std::vector<Eigen::Vector3f>& directions, const ValidityOptions& options,
                           std::int64_t* raysTraced) {
   ProbePlacement placement;
-  std::vector<BackfaceHit> backfaces = traceBackfaces(tracer, gridPosition, directions, raysTraced);
+  const float behind = startBehind(gridPosition, spacing);
+  std::vector<BackfaceHit> backfaces = traceBackfaces(tracer, gridPosition, behind, directions, raysTraced);
   placement.backfaceRatio = backfaceRatio(backfaces.size(), directions.size());
   if (placement.backfaceRatio <= options.maxBackfaceRatio) return placement;
 
@@ -95,7 +120,8 @@ ProbePlacement placeProbe(const RayTracer& tracer, const Eigen::Vector3f& gridPo
       continue;
     ++retests;
     const Eigen::Vector3f offset = distance * direction;
-    const std::vector<BackfaceHit> there = traceBackfaces(tracer, gridPosition + offset, directions, raysTraced);
+    const std::vector<BackfaceHit> there =
+        traceBackfaces(tracer, gridPosition + offset, startBehind(gridPosition + offset, spacing), directions, raysTraced);
     if (backfaceRatio(there.size(), directions.size()) <= options.maxBackfaceRatio) {
       placement.offset = offset;
       placement.state = ProbeState::Relocated;

@@ -15,7 +15,10 @@ namespace baker {
 // fraction that hit a back face (the side opposite glTF's counter-clockwise front, whatever the
 // material's doubleSided says: rooms are modelled with their normals facing inward, so an open
 // room reads 0 and the inside of a solid reads close to 1). Rays that miss count as not back.
-// A ratio above maxBackfaceRatio means the probe is inside geometry.
+// A ratio above maxBackfaceRatio means the probe is inside geometry. The rays start a few float
+// steps behind the probe, so that a probe exactly on a surface (a floor, an edge) meets its
+// back face at distance 0 on half its rays, instead of seeing through it: it reads as inside
+// and is moved off to the front side like any other.
 //
 // The move: such a probe is moved through the nearest back face by at most maxOffsetFraction
 // (0.45) of the spacing, so it stays inside its own cell. The candidates are its back-face hits,
@@ -24,6 +27,9 @@ namespace baker {
 // Only the nearest few candidates are tried, which bounds the cost. A probe with no acceptable
 // candidate is Invalid, and fillInvalidProbes gives it the mean of its valid neighbours.
 enum class ProbeState : std::uint8_t { Invalid = 0, Valid = 1, Relocated = 2 };
+
+// "valid", "relocated" or "invalid": the word reports and JSON use.
+const char* probeStateName(ProbeState state);
 
 struct ProbePlacement {
   Eigen::Vector3f offset{0.0f, 0.0f, 0.0f};  // world-space move from the grid position; zero unless Relocated

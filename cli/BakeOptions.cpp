@@ -22,15 +22,17 @@ constexpr int kMaxRays = 1 << 20;
 
 }  // namespace
 
-void addBakeOptions(CLI::App& app, BakeOptions& o) {
+void addBakeOptions(CLI::App& app, BakeOptions& o, bool listed) {
   app.add_option("scene", o.scenePath, "glTF 2.0 scene (.gltf or .glb)")->required();
-  app.add_option("--basis", o.basisName, "basis to store (see `baker bases`)")->capture_default_str();
   app.add_option("--spacing", o.spacing, "probe spacing in metres; default: the longest side of the scene / 16");
-  app.add_option("--rays", o.rays, "directions traced per probe, one path each")->capture_default_str();
-  app.add_option("--bounces", o.bounces,
-                 "diffuse reflections per path: 0 = emission and sky seen directly, 1 = adds the direct lighting of "
-                 "the first surface hit")
-      ->capture_default_str();
+  if (!listed) {
+    app.add_option("--basis", o.basisName, "basis to store (see `baker bases`)")->capture_default_str();
+    app.add_option("--rays", o.rays, "directions traced per probe, one path each")->capture_default_str();
+    app.add_option("--bounces", o.bounces,
+                   "diffuse reflections per path: 0 = emission and sky seen directly, 1 = adds the direct lighting "
+                   "of the first surface hit")
+        ->capture_default_str();
+  }
   app.add_option("--seed", o.seed, "random seed; the same seed gives bit-identical volumes at any thread count")
       ->capture_default_str();
   app.add_option("--no", o.turnedOff,

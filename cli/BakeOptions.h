@@ -34,7 +34,9 @@ struct BakeOptions {
   SceneOptions scene;
 };
 
-void addBakeOptions(CLI::App& app, BakeOptions& options);
+// `listed`: a command that takes lists of bases, ray and bounce counts registers its own
+// --basis, --rays and --bounces.
+void addBakeOptions(CLI::App& app, BakeOptions& options, bool listed = false);
 
 // Everything a bake needs once the options are checked: the basis, the loaded scene and its
 // BVH, the grid, and the effect plan with the settings it implies.

@@ -24,15 +24,6 @@ Eigen::Vector3f axis(int a) {
   return n;
 }
 
-const char* stateName(ProbeState s) {
-  switch (s) {
-    case ProbeState::Valid: return "valid";
-    case ProbeState::Relocated: return "relocated";
-    case ProbeState::Invalid: return "invalid";
-  }
-  return "";
-}
-
 nlohmann::json vec(const Eigen::Vector3f& v) { return {v.x(), v.y(), v.z()}; }
 
 }  // namespace
@@ -90,7 +81,7 @@ int runProbeCommand(int argc, char** argv) {
       probes.push_back({{"position", vec(positions[i])},
                         {"baked_position", vec(tasks[i].position)},
                         {"offset", vec(placements[i].offset)},
-                        {"state", stateName(placements[i].state)},
+                        {"state", probeStateName(placements[i].state)},
                         {"valid", placements[i].state != ProbeState::Invalid},
                         {"backface_ratio", placements[i].backfaceRatio},
                         {"coefficients", std::vector<float>(c, c + probeBaker.coefficientsPerProbe())},

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "common/Error.h"
+
 namespace baker {
 namespace {
 
@@ -45,6 +47,9 @@ Environment Environment::latLong(int width, int height, std::vector<float> rgb, 
       std::fill_n(texel, 3, 0.0f);
     }
     for (int c = 0; c < 3; ++c) texel[c] *= intensity;
+    if (!Eigen::Vector3f::Map(texel).allFinite())
+      throw InputError(fmt::format("{}: texel ({}, {}) times --env-intensity {} is beyond single precision",
+                                   env.source_, t % width, t / width, intensity));
   }
   env.rgb_ = std::move(rgb);
 

@@ -27,7 +27,8 @@ class Environment {
   Environment() = default;
   static Environment constant(const Eigen::Vector3f& radiance);
   // `rgb`: W·H texels row by row from the top, 3 floats each. Negative or non-finite texels
-  // become 0 and are counted in sanitizedTexels().
+  // become 0 and are counted in sanitizedTexels(); InputError naming `source` when a texel times
+  // `intensity` leaves single precision.
   static Environment latLong(int width, int height, std::vector<float> rgb, float intensity, float rotationDegrees,
                              std::string source);
 

@@ -46,6 +46,9 @@ std::optional<PunctualLight> readLight(const tinygltf::Model& model, int node, c
   }
   if (!std::isfinite(src.intensity) || src.intensity < 0.0) fail(".intensity must be finite and non-negative");
   light.intensity = float(src.intensity);
+  // Light is carried in single precision: beyond it, every path the light reaches becomes Inf.
+  if (!std::isfinite(light.intensity) || !(light.color * light.intensity).allFinite())
+    fail(fmt::format(".intensity {} times .color is beyond single precision", src.intensity));
   // tinygltf reads an absent range as 0; glTF requires range > 0, so 0 can only mean "none".
   if (!std::isfinite(src.range) || src.range < 0.0) fail(".range must be a positive number");
   if (src.range > 0.0) light.range = float(src.range);

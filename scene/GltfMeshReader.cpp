@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 #include "common/Error.h"
@@ -15,6 +16,16 @@ namespace {
 std::size_t trianglesOf(int mode, std::size_t indexCount) {
   if (mode == TINYGLTF_MODE_TRIANGLES) return indexCount / 3;
   return indexCount >= 3 ? indexCount - 2 : 0;
+}
+
+// glTF keeps COLOR_0 within [0, 1], but a float attribute can hold anything: a colour above 1
+// would reflect more light than arrives, and NaN would spread through every path that meets
+// it. Such components are clamped, NaN reads as 1 (a vertex without COLOR_0). True if any was.
+bool sanitizeColor(Eigen::Vector4f& color) {
+  const Eigen::Vector4f clean = color.unaryExpr([](float c) { return std::isnan(c) ? 1.0f : std::clamp(c, 0.0f, 1.0f); });
+  const bool changed = !(clean.array() == color.array()).all();
+  color = clean;
+  return changed;
 }
 
 bool readsSet(const Material& m, int set) {
@@ -95,10 +106,14 @@ void GltfMeshReader::readPrimitive(int meshIndex, int primitiveIndex, const Mesh
     if (!mesh.colors.empty()) mesh.colors.resize(base + vertexCount, Eigen::Vector4f::Ones());
   } else {
     mesh.colors.resize(base, Eigen::Vector4f::Ones());
+    std::size_t sanitized = 0, firstSanitized = 0;
     for (std::size_t v = 0; v < vertexCount; ++v) {
       const float* c = &color[v * colorComponents];
-      mesh.colors.emplace_back(c[0], c[1], c[2], colorComponents == 4 ? c[3] : 1.0f);
+      Eigen::Vector4f rgba(c[0], c[1], c[2], colorComponents == 4 ? c[3] : 1.0f);
+      if (sanitizeColor(rgba) && sanitized++ == 0) firstSanitized = v;
+      mesh.colors.push_back(rgba);
     }
+    outOfRangeColors_.note(sanitized, fmt::format("{}.attributes.COLOR_0[{}]", path, firstSanitized));
   }
 
   std::vector<std::uint32_t> indices;
@@ -246,6 +261,10 @@ std::vector<std::string> GltfMeshReader::warnings() const {
   if (degenerate_.count)
     out.push_back(fmt::format("{}: skipped {} degenerate triangle(s) of zero area (first: {})", file_,
                               degenerate_.count, degenerate_.first));
+  if (outOfRangeColors_.count)
+    out.push_back(fmt::format("{}: {} COLOR_0 colour(s) had components outside [0, 1] or not a number (first: {}); "
+                              "clamped to [0, 1], NaN read as 1",
+                              file_, outOfRangeColors_.count, outOfRangeColors_.first));
   if (missingTexcoords_.count)
     out.push_back(fmt::format("{}: {} primitive(s) lack a texture coordinate set their material reads (first: {}); "
                               "the texture is read at (0, 0) there",

@@ -21,7 +21,8 @@ struct MeshPose {
 // and lines are skipped), every index and component type, sparse accessors, quantized
 // attributes (KHR_mesh_quantization), the TEXCOORD_n sets materials read and COLOR_0. Problems
 // a user must fix are InputErrors naming the file and glTF path; what the reader can step over
-// (degenerate triangles, skipped modes, a missing texcoord set) becomes one warning per kind.
+// (degenerate triangles, skipped modes, a missing texcoord set, COLOR_0 outside [0, 1] or NaN,
+// which is clamped) becomes one warning per kind.
 class GltfMeshReader {
  public:
   // Geometry in the whole scene beyond these many vertices or triangles is refused before it
@@ -66,7 +67,7 @@ class GltfMeshReader {
   const GltfMaterials& materials_;
   std::size_t vertices_ = 0;
   std::size_t triangles_ = 0;
-  Skipped degenerate_, points_, lines_, missingTexcoords_;
+  Skipped degenerate_, points_, lines_, missingTexcoords_, outOfRangeColors_;
 };
 
 }  // namespace baker

@@ -169,6 +169,10 @@ void RayTracer::intersect8(const Eigen::Vector3f& origin, const Eigen::Vector3f*
 }
 
 void RayTracer::intersect8(const Ray* rays, int count, Hit* hits) const {
+  if (log_) {
+    log_->closest.insert(log_->closest.end(), rays, rays + count);
+    log_->packetSizes.push_back(count);
+  }
   alignas(32) int valid[8];
   alignas(32) RTCRayHit8 packet;
   for (int i = 0; i < 8; ++i) {
@@ -201,6 +205,10 @@ void RayTracer::intersect8(const Ray* rays, int count, Hit* hits) const {
 }
 
 void RayTracer::occluded(const Ray* rays, int count, bool* blocked) const {
+  if (log_) {
+    log_->occlusion.insert(log_->occlusion.end(), rays, rays + count);
+    log_->streamSizes.push_back(count);
+  }
   constexpr int kChunk = 64;
   alignas(16) RTCRay stream[kChunk];
   RTCIntersectContext context;

@@ -53,6 +53,16 @@ class RayTracer {
   // (rtcOccluded1M), any count.
   void occluded(const Ray* rays, int count, bool* blocked) const;
 
+  // Every ray traced from now on, in the calls that traced them, for a benchmark to replay with
+  // nothing but Embree (bench_bake's trace-only mode). Single-threaded use only; null stops.
+  struct RayLog {
+    std::vector<Ray> closest;       // intersect8 rays, packet after packet
+    std::vector<int> packetSizes;
+    std::vector<Ray> occlusion;     // occluded rays, stream after stream
+    std::vector<int> streamSizes;
+  };
+  void record(RayLog* log) { log_ = log; }
+
   int instancedMeshes() const { return instancedMeshes_; }    // meshes built once and instanced
   int filteredGeometries() const { return filteredGeometries_; }  // geometries with alpha filters
 
@@ -76,6 +86,7 @@ class RayTracer {
   std::vector<std::unique_ptr<FilterTarget>> filterTargets_;  // stable addresses for Embree's user data
   int instancedMeshes_ = 0;
   int filteredGeometries_ = 0;
+  RayLog* log_ = nullptr;
 };
 
 }  // namespace baker

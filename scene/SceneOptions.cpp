@@ -53,8 +53,9 @@ void addSceneOptions(CLI::App& app, SceneOptions& options) {
 }
 
 Environment environmentFromOptions(const SceneOptions& options, std::vector<std::string>& warnings) {
-  if (!std::isfinite(options.environmentIntensity) || options.environmentIntensity < 0.0)
-    throw InputError(fmt::format("--env-intensity must be a finite non-negative number, got {}",
+  // Radiance is carried in single precision, so the multiplier must be a finite float too.
+  if (!std::isfinite(float(options.environmentIntensity)) || options.environmentIntensity < 0.0)
+    throw InputError(fmt::format("--env-intensity must be a finite non-negative number within single precision, got {}",
                                  options.environmentIntensity));
   if (!std::isfinite(options.environmentRotation))
     throw InputError(fmt::format("--env-rotation must be a finite number of degrees, got {}",

@@ -1,0 +1,287 @@
+// The bake's cost, measured as ratios within one run (these machines are noisy):
+//
+//   bench_bake [SCENE.gltf] [--rays N] [--basis NAME] [--spacing M] [--baker PATH] [--json]
+//
+// 1. Throughput against the ray-tracing limit: bake rays per second (one thread, tracing and
+//    shading and projecting) over the rate at which Embree alone traces exactly the same rays,
+//    recorded during the bake and replayed in the same packets and streams (trace-only mode).
+// 2. Stage breakdown: load, BVH, trace (the replay), shade (the rest of tracing), project, write.
+// 3. Scaling: two threads against one; cost per probe at 1×, 2× and 4× the probes; peak memory
+//    of `baker` processes at three grid sizes.
+// 4. Sampling efficiency: rays per probe for 1 % irradiance RMSE (E for the six axis normals at
+//    eight probes, against 2^19 Fibonacci rays) with the spherical Fibonacci set against
+//    independent uniformly random directions.
+// Default scene: the project's data/default_room.
+#include <tbb/global_control.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "bake/Baker.h"
+#include "bake/BasisRegistry.h"
+#include "bake/PathIntegrator.h"
+#include "bake/ProbeBaker.h"
+#include "common/Timing.h"
+#include "formats/VolumeWriter.h"
+#include "scene/GltfLoader.h"
+#include "scene/RayTracer.h"
+#include "scene/SceneCensus.h"
+#include "scene/SceneEffects.h"
+#include "bake/TransportPlan.h"
+
+namespace baker {
+namespace {
+
+struct Options {
+  std::string scene = std::string(BAKER_SOURCE_DIR) + "/data/default_room/default_room.gltf";
+  std::string basis = "sh-l2";
+  std::string baker = BAKER_BINARY;
+  int rays = 256;
+  double spacing = 0.0;
+  bool json = false;
+};
+
+double replaySeconds(const RayTracer& tracer, const RayTracer::RayLog& log) {
+  std::vector<Hit> hits(8);
+  std::unique_ptr<bool[]> blocked(new bool[std::max<std::size_t>(1, log.occlusion.size())]);
+  const auto start = std::chrono::steady_clock::now();
+  std::size_t at = 0;
+  for (int size : log.packetSizes) {
+    tracer.intersect8(log.closest.data() + at, size, hits.data());
+    at += std::size_t(size);
+  }
+  at = 0;
+  for (int size : log.streamSizes) {
+    tracer.occluded(log.occlusion.data() + at, size, blocked.get());
+    at += std::size_t(size);
+  }
+  return secondsSince(start);
+}
+
+// Rays per probe at which the relative RMSE reaches 1 %: interpolated in log-log between the
+// measured counts, or, beyond the last, extrapolated along the power law fitted to the last
+// three (*extrapolated set).
+double raysForOnePercent(const std::vector<int>& counts, const std::vector<double>& errors, bool* extrapolated) {
+  *extrapolated = false;
+  if (errors.front() <= 0.01) return counts.front();
+  for (std::size_t i = 1; i < counts.size(); ++i)
+    if (errors[i] <= 0.01) {
+      const double t = std::log(errors[i - 1] / 0.01) / std::log(errors[i - 1] / errors[i]);
+      return std::exp(std::log(counts[i - 1]) + t * (std::log(counts[i]) - std::log(counts[i - 1])));
+    }
+  *extrapolated = true;
+  const std::size_t n = counts.size();
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (std::size_t i = n - 3; i < n; ++i) {
+    const double x = std::log(counts[i]), y = std::log(errors[i]);
+    sx += x, sy += y, sxx += x * x, sxy += x * y;
+  }
+  const double slope = (3 * sxy - sx * sy) / (3 * sxx - sx * sx), intercept = (sy - slope * sx) / 3;
+  return slope < 0 ? std::exp((std::log(0.01) - intercept) / slope) : 0.0;
+}
+
+nlohmann::json run(const Options& o) {
+  nlohmann::json out;
+  auto stage = std::chrono::steady_clock::now();
+  const Scene scene = loadGltf(o.scene);
+  const double loadSeconds = secondsSince(stage);
+  stage = std::chrono::steady_clock::now();
+  RayTracer tracer(scene);
+  const double bvhSeconds = secondsSince(stage);
+  std::vector<PlannedEffect> plan = planEffects(scene, takeCensus(scene));
+  BakeSettings settings;
+  settings.rays = o.rays;
+  settings.transport = transportSettings(plan, 3, 0);
+  const auto basis = makeBasis(o.basis);
+  const ProbeGrid grid = makeProbeGrid(scene.bounds, o.spacing, std::int64_t(1) << 27);
+
+  // 1 and 2: one thread, the bake recorded, then replayed by Embree alone.
+  double bakeSeconds1 = 0.0, bakeSeconds2 = 0.0, writeSeconds = 0.0;
+  BakeStats stats;
+  {
+    tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+    RayTracer::RayLog log;
+    tracer.record(&log);
+    bakeVolume(scene, tracer, *basis, grid, settings, nullptr);  // warm caches, record the rays
+    tracer.record(nullptr);
+    stage = std::chrono::steady_clock::now();
+    const Volume volume = bakeVolume(scene, tracer, *basis, grid, settings, &stats);
+    bakeSeconds1 = secondsSince(stage);
+    const double replay = replaySeconds(tracer, log);
+    const double traced = double(stats.rays.total());
+    const std::string path = (std::filesystem::temp_directory_path() / "bench_bake.vdb").string();
+    stage = std::chrono::steady_clock::now();
+    writeVolume(volume, *basis, VolumeOutput{path});
+    writeSeconds = secondsSince(stage);
+    std::filesystem::remove(path);
+    const double bakeRate = traced / stats.traceSeconds, limitRate = traced / replay;
+    out["throughput"] = {{"rays", traced},
+                         {"bake_mrays_per_second", bakeRate * 1e-6},
+                         {"trace_only_mrays_per_second", limitRate * 1e-6},
+                         {"ratio", bakeRate / limitRate},
+                         {"target", 0.85}};
+    const double shade = std::max(0.0, stats.traceSeconds - replay - stats.projectionSeconds);
+    const double total = loadSeconds + bvhSeconds + stats.operatorSeconds + stats.traceSeconds + writeSeconds;
+    out["stages_seconds"] = {{"load", loadSeconds},   {"bvh", bvhSeconds},
+                             {"operators", stats.operatorSeconds}, {"trace", replay},
+                             {"shade", shade},        {"project", stats.projectionSeconds},
+                             {"write", writeSeconds}, {"total", total}};
+    out["projection_and_write_fraction"] = (stats.projectionSeconds + stats.operatorSeconds + writeSeconds) / total;
+    out["projection_and_write_target"] = 0.05;
+  }
+  // 3. Scaling with threads and with probes.
+  {
+    tbb::global_control two(tbb::global_control::max_allowed_parallelism, 2);
+    stage = std::chrono::steady_clock::now();
+    BakeStats twoStats;
+    bakeVolume(scene, tracer, *basis, grid, settings, &twoStats);
+    bakeSeconds2 = secondsSince(stage);
+    out["threads"] = {{"one_thread_trace_seconds", stats.traceSeconds},
+                      {"two_threads_trace_seconds", twoStats.traceSeconds},
+                      {"speedup", stats.traceSeconds / twoStats.traceSeconds},
+                      {"target", 1.9}};
+  }
+  nlohmann::json perProbe = nlohmann::json::array();
+  for (double factor : {1.0, 2.0, 4.0}) {
+    tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+    const ProbeGrid finer = makeProbeGrid(scene.bounds, grid.spacing / std::cbrt(factor), std::int64_t(1) << 27);
+    BakeStats s;
+    bakeVolume(scene, tracer, *basis, finer, settings, &s);
+    perProbe.push_back({{"probes", s.probes}, {"trace_seconds", s.traceSeconds},
+                        {"microseconds_per_probe", 1e6 * s.traceSeconds / double(s.probes)}});
+  }
+  out["cost_against_probes"] = perProbe;
+  nlohmann::json memory = nlohmann::json::array();
+  for (double factor : {1.0, 8.0, 64.0}) {
+    const std::string tmp = (std::filesystem::temp_directory_path() / "bench_bake_memory.vdb").string();
+    const std::string command = "'" + o.baker + "' '" + o.scene + "' --quiet --json --rays 16 --spacing " +
+                                std::to_string(grid.spacing / std::cbrt(factor)) + " --out '" + tmp + "'";
+    FILE* pipe = ::popen(command.c_str(), "r");
+    std::string text;
+    char buffer[4096];
+    while (pipe && std::fgets(buffer, sizeof buffer, pipe)) text += buffer;
+    if (pipe) ::pclose(pipe);
+    std::filesystem::remove(tmp);
+    try {
+      const nlohmann::json j = nlohmann::json::parse(text);
+      memory.push_back({{"probes", j["probes"]}, {"peak_memory_mib", j["peak_memory_bytes"].get<double>() / 1048576.0}});
+    } catch (const nlohmann::json::exception&) {
+      memory.push_back({{"probes", nullptr}, {"error", "the baker run failed: " + command}});
+    }
+  }
+  out["peak_memory_against_probes"] = memory;
+
+  // 4. Sampling efficiency at a handful of probes, against 65536 Fibonacci rays.
+  {
+    TransportSettings transport = settings.transport;
+    const PathIntegrator integrator(scene, tracer, transport);
+    std::vector<Eigen::Vector3f> positions;
+    for (int k = 0; k < 8; ++k)
+      positions.push_back(grid.position((k * 5 + 1) % grid.dims.x(), (k * 3 + 1) % grid.dims.y(),
+                                        (k * 7 + 2) % grid.dims.z())
+                              .cast<float>());
+    const std::vector<Eigen::Vector3f> normals = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    auto irradiance = [&](const Eigen::Vector3f& position, std::uint64_t id, const std::vector<Eigen::Vector3f>& dirs) {
+      std::vector<Eigen::Vector3f> radiance(dirs.size());
+      std::vector<float> sky(dirs.size());
+      RayCounts counts;
+      integrator.trace(position, id, dirs.data(), int(dirs.size()), radiance.data(), sky.data(), &counts);
+      std::vector<Eigen::Vector3d> e(normals.size(), Eigen::Vector3d::Zero());
+      for (std::size_t r = 0; r < dirs.size(); ++r)
+        for (std::size_t n = 0; n < normals.size(); ++n)
+          e[n] += radiance[r].cast<double>() * (4.0 * M_PI / dirs.size() * std::max(0.0f, normals[n].dot(dirs[r])));
+      return e;
+    };
+    auto fibonacci = [](int n) {
+      std::vector<Eigen::Vector3f> d;
+      for (const Eigen::Vector3d& v : sphericalFibonacci(n).directions) d.push_back(v.cast<float>());
+      return d;
+    };
+    std::vector<std::vector<Eigen::Vector3d>> reference;
+    double mean = 0.0;
+    for (std::size_t p = 0; p < positions.size(); ++p) {
+      reference.push_back(irradiance(positions[p], 1000 + p, fibonacci(1 << 19)));
+      for (const Eigen::Vector3d& e : reference.back()) mean += e.mean();
+    }
+    mean /= double(positions.size() * normals.size());
+    std::mt19937 rng(7);
+    std::normal_distribution<float> gauss;
+    const std::vector<int> counts = {256, 1024, 4096, 16384, 65536};
+    std::vector<double> fibonacciError, randomError;
+    for (int n : counts) {
+      double sf = 0.0, sr = 0.0;
+      for (std::size_t p = 0; p < positions.size(); ++p) {
+        std::vector<Eigen::Vector3f> random(n);
+        for (Eigen::Vector3f& d : random) d = Eigen::Vector3f(gauss(rng), gauss(rng), gauss(rng)).normalized();
+        const auto ef = irradiance(positions[p], p, fibonacci(n)), er = irradiance(positions[p], p, random);
+        for (std::size_t k = 0; k < normals.size(); ++k) {
+          sf += (ef[k] - reference[p][k]).squaredNorm() / 3.0;
+          sr += (er[k] - reference[p][k]).squaredNorm() / 3.0;
+        }
+      }
+      const double m = double(positions.size() * normals.size());
+      fibonacciError.push_back(std::sqrt(sf / m) / mean);
+      randomError.push_back(std::sqrt(sr / m) / mean);
+    }
+    bool fibonacciExtrapolated = false, randomExtrapolated = false;
+    const double nf = raysForOnePercent(counts, fibonacciError, &fibonacciExtrapolated);
+    const double nr = raysForOnePercent(counts, randomError, &randomExtrapolated);
+    out["sampling_efficiency"] = {{"ray_counts", counts},
+                                  {"fibonacci_relative_rmse", fibonacciError},
+                                  {"random_relative_rmse", randomError},
+                                  {"fibonacci_rays_for_1_percent", nf},
+                                  {"fibonacci_extrapolated", fibonacciExtrapolated},
+                                  {"random_rays_for_1_percent", nr},
+                                  {"random_extrapolated", randomExtrapolated},
+                                  {"ratio", nf > 0 && nr > 0 ? nr / nf : 0.0},
+                                  {"target", 4.0}};
+  }
+  out["scene"] = std::filesystem::path(o.scene).filename().string();
+  out["basis"] = o.basis;
+  out["rays_per_probe"] = o.rays;
+  out["probes"] = grid.probeCount();
+  return out;
+}
+
+}  // namespace
+}  // namespace baker
+
+int main(int argc, char** argv) {
+  baker::Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto next = [&]() -> std::string {
+      if (i + 1 >= argc) throw std::runtime_error(a + " needs a value");
+      return argv[++i];
+    };
+    if (a == "--rays") o.rays = std::stoi(next());
+    else if (a == "--basis") o.basis = next();
+    else if (a == "--spacing") o.spacing = std::stod(next());
+    else if (a == "--baker") o.baker = next();
+    else if (a == "--json") o.json = true;
+    else o.scene = a;
+  }
+  const nlohmann::json result = baker::run(o);
+  if (o.json) {
+    std::cout << result.dump(2) << "\n";
+    return 0;
+  }
+  std::cout << "throughput: bake " << result["throughput"]["bake_mrays_per_second"] << " Mrays/s, trace-only "
+            << result["throughput"]["trace_only_mrays_per_second"] << " Mrays/s, ratio " << result["throughput"]["ratio"]
+            << " (target 0.85)\n";
+  std::cout << "stages (s): " << result["stages_seconds"].dump() << "; projection + operators + write "
+            << result["projection_and_write_fraction"] << " of the bake (target 0.05)\n";
+  std::cout << "threads: 2 vs 1 speedup " << result["threads"]["speedup"] << " (target 1.9)\n";
+  std::cout << "cost against probes: " << result["cost_against_probes"].dump() << "\n";
+  std::cout << "peak memory: " << result["peak_memory_against_probes"].dump() << "\n";
+  std::cout << "sampling: " << result["sampling_efficiency"].dump() << "\n";
+  return 0;
+}

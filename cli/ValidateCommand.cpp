@@ -1,0 +1,111 @@
+#include "cli/ValidateCommand.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <memory>
+
+#include "cli/CommandLine.h"
+#include "cli/ValidationReport.h"
+#include "common/Error.h"
+#include "formats/AtomicFile.h"
+#include "formats/IrradianceError.h"
+#include "formats/ReferenceComparison.h"
+#include "formats/ReferencePanoramas.h"
+#include "formats/VolumeComparison.h"
+#include "formats/VolumeReader.h"
+
+namespace baker {
+namespace {
+
+// Enough probes for a person to look at first; the statistics cover them all.
+constexpr std::size_t kWorstProbes = 10;
+
+// The box the grid's cells cover, for messages about grids that do not overlap.
+std::string coveredRegionText(const ProbeGrid& g) {
+  const Eigen::Vector3d lo = g.origin.array() - 0.5 * g.spacing;
+  const Eigen::Vector3d hi = g.origin + g.spacing * (g.dims.cast<double>().array() - 0.5).matrix();
+  return fmt::format("({:.4g}, {:.4g}, {:.4g})..({:.4g}, {:.4g}, {:.4g})", lo.x(), lo.y(), lo.z(), hi.x(), hi.y(), hi.z());
+}
+
+// A report file, claimed before the comparison runs so that a missing directory costs nothing.
+struct ReportFile {
+  std::string path;
+  std::unique_ptr<AtomicFile> file;
+
+  explicit ReportFile(const std::string& finalPath) : path(finalPath) {
+    if (!path.empty()) file = std::make_unique<AtomicFile>(path);
+  }
+  void write(const std::string& text) {
+    if (!file) return;
+    std::ofstream out(file->temporaryPath());
+    out << text;
+    out.close();
+    if (!out) throw InputError(fmt::format("{}: cannot write", path));
+    file->commit();
+  }
+};
+
+}  // namespace
+
+int runValidateCommand(int argc, char** argv) {
+  CLI::App app{
+      "Compare a volume with a reference volume (either format, any basis, any overlapping grid) or with "
+      "reference_probe.py's radiance panoramas, in reconstructed irradiance E(n)."};
+  app.footer(fmt::format(
+      "Each probe of the reference is compared at 26 normals: the {}. With the same grid the new volume's probe of the "
+      "same index is used, otherwise the new volume sampled trilinearly at the reference probe's position (reference "
+      "probes outside the new volume's cells are skipped). Validity (probe_state) must not change; metadata "
+      "differences are reported only.\n"
+      "--against-reference DIR: DIR is what reference_probe.py writes (probes.json, probe_NNNN.exr); E(n) is the exact "
+      "sum over the panorama's pixels. The panoramas contain no punctual light seen directly: bake with "
+      "--no direct-punctual for this.\n"
+      "Exit 0: every check passed; 1: a check failed; 2: unusable input.",
+      kRelativeErrorDefinition));
+  std::string referencePath, newPath, referenceDirectory, reportPath, junitPath;
+  double tolerance = 0.02;
+  bool json = false;
+  app.add_option("reference", referencePath, "REFERENCE volume (.vdb or EXR slices), or VOLUME with --against-reference")
+      ->required();
+  app.add_option("new", newPath, "NEW volume to check against REFERENCE");
+  app.add_option("--against-reference", referenceDirectory, "compare VOLUME with reference_probe.py's output DIR");
+  app.add_option("--tolerance", tolerance, "largest relative error that passes (default 0.02)");
+  app.add_option("--report", reportPath, "write the report as JSON to this file");
+  app.add_option("--junit", junitPath, "write the checks as JUnit XML to this file");
+  app.add_flag("--json", json, "print the report as JSON on stdout instead of the summary");
+  return runGuarded("baker validate", app, argc, argv, [&]() {
+    if (referenceDirectory.empty() == newPath.empty())
+      throw InputError("expected REFERENCE NEW, or VOLUME --against-reference DIR");
+    if (!std::isfinite(tolerance) || tolerance < 0.0)
+      throw InputError(fmt::format("--tolerance {}: expected a finite number >= 0", tolerance));
+    ReportFile report(reportPath), junit(junitPath);
+
+    ValidationReport result;
+    if (!referenceDirectory.empty()) {
+      const Volume volume = readVolume(referencePath);
+      const ReferenceSet references = readReferenceSet(referenceDirectory);
+      const ReferenceComparison comparison = compareWithReference(volume, references, kWorstProbes);
+      if (comparison.probesCompared == 0)
+        throw InputError(fmt::format("{}/probes.json: no reference probe lies inside {}'s cells {}", referenceDirectory,
+                                     referencePath, coveredRegionText(volume.grid)));
+      result = referenceValidationReport(comparison, referenceDirectory, referencePath, tolerance);
+    } else {
+      const Volume reference = readVolume(referencePath);
+      const Volume candidate = readVolume(newPath);
+      const VolumeComparison comparison = compareVolumes(reference, candidate, kWorstProbes);
+      if (comparison.probesCompared == 0)
+        throw InputError(fmt::format("{}: its grid {} does not overlap {}'s {}", newPath, coveredRegionText(candidate.grid),
+                                     referencePath, coveredRegionText(reference.grid)));
+      result = volumeValidationReport(comparison, referencePath, newPath, tolerance);
+    }
+
+    report.write(result.json.dump(2) + "\n");
+    junit.write(junitXml(result));
+    std::cout << (json ? result.json.dump(2) + "\n" : textSummary(result));
+    return result.passed() ? 0 : 1;
+  });
+}
+
+}  // namespace baker

@@ -1,0 +1,23 @@
+#pragma once
+
+namespace baker {
+
+// `baker validate REFERENCE NEW [--tolerance X] [--report FILE.json] [--junit FILE.xml] [--json]`
+// compares two volumes (either format, any bases, possibly different grids) in reconstructed
+// irradiance at the reference's probes; `baker validate VOLUME --against-reference DIR ...`
+// compares a volume with reference_probe.py's panoramas. Exit 0 when every check passes, 1 when
+// one fails (irradiance beyond the tolerance, a probe whose validity changed), 2 for unusable input
+// (unreadable files, grids that do not overlap).
+//
+// Report keys (--report, --json), both modes: mode ("volume" or "reference"), reference, new,
+// error_definition, normals, floor, tolerance, passed, max_relative_error, mean_relative_error,
+// p99_relative_error, probes_compared, probes_outside_new_grid, worst_probes [{index, position,
+// relative_error, max_abs_error, reference_mean_irradiance}; against a reference also file, and
+// index is the probe's number in probes.json instead of [i, j, k]], validity_compared,
+// validity_changes [{index, position, reference, new}], sky_visibility_max_abs_difference (null
+// when not compared), metadata_differences [{field, reference, new}], checks [{name, passed,
+// skipped, message}]; volume mode also grids_match, reference mode also note.
+// argv[0] is "validate".
+int runValidateCommand(int argc, char** argv);
+
+}  // namespace baker

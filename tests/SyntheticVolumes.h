@@ -1,0 +1,24 @@
+#pragma once
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "bake/Volume.h"
+#include "formats/RgbImage.h"
+
+namespace baker::test {
+
+// An sh-l2 volume whose irradiance is mostly constant with a gentle lobe, every coefficient an
+// affine function of the probe's world position: trilinear sampling reproduces it exactly, so a
+// volume on another grid over the same field compares at rounding error. All probes valid.
+Volume smoothVolume(const Eigen::Vector3i& dims, const Eigen::Vector3d& origin, double spacing);
+
+// Writes what reference_probe.py writes: DIR/probes.json (settings with `bounces`, the probes'
+// positions and files) and DIR/probe_NNNN.exr, one copy of `panorama` per position.
+void writeReferenceDirectory(const std::string& dir, const std::vector<Eigen::Vector3d>& positions,
+                             const RgbImage& panorama, int bounces);
+
+// A W × H panorama of constant radiance.
+RgbImage constantPanorama(int width, int height, const Eigen::Vector3f& radiance);
+
+}  // namespace baker::test
