@@ -8,8 +8,9 @@ packages=(
   libembree-dev libtinygltf-dev libopenimageio-dev libopenexr-dev libopenvdb-dev libboost-iostreams-dev
   libtbb-dev libeigen3-dev libcli11-dev nlohmann-json3-dev libfmt-dev libgtest-dev
   libopenvdb-tools openexr openimageio-tools glslang-tools
-  clang libclang-rt-14-dev  # scripts/test-sanitized.sh and fuzz.sh: libFuzzer and clang's sanitizer runtimes
 )
+# --sanitizers: clang's sanitizer runtimes and libFuzzer, for scripts/test-sanitized.sh and fuzz.sh.
+if [ "${1:-}" = "--sanitizers" ]; then packages+=(clang libclang-rt-14-dev); fi
 
 missing=()
 for p in "${packages[@]}"; do

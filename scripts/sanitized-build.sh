@@ -4,7 +4,7 @@
 sanitized_build=build-sanitized
 
 build_sanitized() {
-  scripts/install-deps.sh
+  scripts/install-deps.sh --sanitizers
   # Line tables only: reports keep file and line, and the build is minutes shorter than with -g.
   CC=clang CXX=clang++ cmake -S . -B "$sanitized_build" -DCMAKE_BUILD_TYPE=Release \
     -DCMAKE_CXX_FLAGS_RELEASE="-O2 -gline-tables-only -DNDEBUG" -DBAKER_SANITIZE=ON -DBAKER_FUZZ=ON > /dev/null
