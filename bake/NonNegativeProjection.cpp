@@ -3,6 +3,8 @@
 #include <Eigen/Cholesky>
 #include <vector>
 
+#include "bake/DirectionSet.h"
+
 namespace baker {
 
 Eigen::VectorXd nonNegativeProjection(const Eigen::MatrixXd& gram, const Eigen::VectorXd& moments) {
@@ -56,6 +58,17 @@ Eigen::VectorXd nonNegativeProjection(const Eigen::MatrixXd& gram, const Eigen::
     }
   }
   return c;
+}
+
+bool functionsAreNonNegative(const SphericalFunctions& functions) {
+  const DirectionSet directions = sphericalFibonacci(16384);
+  std::vector<double> values(std::size_t(functions.count()));
+  for (const Eigen::Vector3d& d : directions.directions) {
+    functions.evaluate(d, values.data());
+    for (double v : values)
+      if (v < -1e-9) return false;
+  }
+  return true;
 }
 
 }  // namespace baker

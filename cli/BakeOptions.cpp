@@ -6,6 +6,7 @@
 #include <ostream>
 
 #include "bake/BasisRegistry.h"
+#include "bake/NonNegativeProjection.h"
 #include "bake/TransportPlan.h"
 #include "common/Error.h"
 #include "common/Timing.h"
@@ -56,15 +57,17 @@ PreparedBake prepareBake(const CLI::App& app, const BakeOptions& o, std::ostream
   if (o.threads < 0) throw InputError(fmt::format("--threads must be positive, got {}", o.threads));
   if (app.count("--sg-sharpness") && !(o.sgSharpness > 0.0))
     throw InputError(fmt::format("--sg-sharpness must be a positive number, got {}", o.sgSharpness));
-  if (o.projection.nonNegative && o.basisName.rfind("sh-", 0) == 0)
-    throw InputError(fmt::format("--non-negative: {} functions change sign, so coefficients >= 0 do not make the "
-                                 "reconstruction non-negative; use it with ad-*, sg-* or ambient-cube",
-                                 o.basisName));
   if (o.projection.window.hannWidth < 0)
     throw InputError(fmt::format("--window must be a band count >= 1, got {}", o.projection.window.hannWidth));
 
   PreparedBake b;
   b.basis = makeBasis(o.basisName, o.sgSharpness);
+  // The constraint is on RGB, Y and visibility, which all use channel 0's functions.
+  if (o.projection.nonNegative && !functionsAreNonNegative(b.basis->functions(0)))
+    throw InputError(fmt::format("--non-negative: {} functions change sign, so coefficients >= 0 do not make the "
+                                 "reconstruction non-negative (and can make its ringing worse); use it with "
+                                 "ad-linear, ad-cos2, ad-srbf, sg-* or ambient-cube",
+                                 o.basisName));
   if (o.threads > 0)
     b.threadLimit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o.threads);
   const auto start = std::chrono::steady_clock::now();

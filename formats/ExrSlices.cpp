@@ -63,6 +63,26 @@ nlohmann::json manifestOf(const Volume& v, const Basis& basis, ExrPrecision prec
 
 bool replaceableVolumeDirectory(const std::string& path) { return isExrSliceDirectory(path); }
 
+// Opens slice k, named `name` in the manifest, after checking that it is a file in the volume's
+// directory holding slice k at the grid's size (InputError naming the slice otherwise).
+std::unique_ptr<OIIO::ImageInput> openSlice(const std::filesystem::path& dir, const std::string& name, int k,
+                                            const ProbeGrid& g, const std::string& manifestPath) {
+  if (name.find('/') != std::string::npos || name.find('\\') != std::string::npos)
+    throw InputError(fmt::format("{}: slice name \"{}\" must be a file in the volume's directory", manifestPath, name));
+  const std::string slicePath = (dir / name).string();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(slicePath, ec)) throw InputError(fmt::format("{}: slice file is missing", slicePath));
+  auto image = OIIO::ImageInput::open(slicePath);
+  if (!image) throw InputError(fmt::format("{}: cannot read: {}", slicePath, oneLine(OIIO::geterror())));
+  const OIIO::ImageSpec& spec = image->spec();
+  if (spec.width != g.dims.x() || spec.height != g.dims.y() || spec.depth != 1)
+    throw InputError(fmt::format("{}: {} × {} pixels, expected {} × {}", slicePath, spec.width, spec.height,
+                                 g.dims.x(), g.dims.y()));
+  const int holds = spec.get_int_attribute("baker.slice", -1);
+  if (holds != k) throw InputError(fmt::format("{}: holds slice {}, but the manifest lists it as slice {}", slicePath, holds, k));
+  return image;
+}
+
 }  // namespace
 
 bool isExrSliceDirectory(const std::string& path) {
@@ -159,28 +179,21 @@ Volume readExrSlices(const std::string& path) {
   }
   if (!(scale > 0.0) || !std::isfinite(scale))
     throw InputError(fmt::format("{}: \"coefficient_scale\" must be a positive number", manifestPath));
-  Volume volume = header.emptyVolume(manifestPath);
-  const ProbeGrid& g = volume.grid;
-  if (int(slices.size()) != g.dims.z())
+  const ProbeGrid& g = header.grid;
+  if (g.dims.z() < 0 || slices.size() != std::size_t(g.dims.z()))
     throw InputError(fmt::format("{}: {} slices listed for {} probes along z", manifestPath, slices.size(), g.dims.z()));
+  // Every slice is checked against the manifest before anything is allocated for it: the
+  // manifest's sizes are only believed once the images agree with them.
+  for (int k = 0; k < g.dims.z(); ++k) openSlice(dir, slices[k], k, g, manifestPath);
+  Volume volume = header.emptyVolume(manifestPath);
 
   const std::unique_ptr<Basis> basis = makeBasis(volume.basisName);
   const std::vector<VolumeGrid> grids = volumeGrids(*basis, volume.visibilityPerProbe, header.hasProbeStates);
   std::vector<float> pixels;
   for (int k = 0; k < g.dims.z(); ++k) {
-    if (slices[k].find('/') != std::string::npos || slices[k].find('\\') != std::string::npos)
-      throw InputError(fmt::format("{}: slice name \"{}\" must be a file in the volume's directory", manifestPath, slices[k]));
     const std::string slicePath = (dir / slices[k]).string();
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(slicePath, ec)) throw InputError(fmt::format("{}: slice file is missing", slicePath));
-    auto image = OIIO::ImageInput::open(slicePath);
-    if (!image) throw InputError(fmt::format("{}: cannot read: {}", slicePath, oneLine(OIIO::geterror())));
+    const std::unique_ptr<OIIO::ImageInput> image = openSlice(dir, slices[k], k, g, manifestPath);
     const OIIO::ImageSpec& spec = image->spec();
-    if (spec.width != g.dims.x() || spec.height != g.dims.y() || spec.depth != 1)
-      throw InputError(fmt::format("{}: {} × {} pixels, expected {} × {}", slicePath, spec.width, spec.height,
-                                   g.dims.x(), g.dims.y()));
-    const int holds = spec.get_int_attribute("baker.slice", -1);
-    if (holds != k) throw InputError(fmt::format("{}: holds slice {}, but the manifest lists it as slice {}", slicePath, holds, k));
     std::vector<std::pair<int, std::pair<const VolumeGrid*, int>>> sources;  // channel index → grid component
     for (const VolumeGrid& grid : grids)
       for (int c = 0; c < grid.components; ++c) {

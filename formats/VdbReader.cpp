@@ -5,6 +5,7 @@
 
 #include "bake/BasisRegistry.h"
 #include "common/Error.h"
+#include "formats/VdbChecksum.h"
 #include "formats/VolumeLayout.h"
 #include "formats/VolumeMetadata.h"
 #include "formats/VolumeHeader.h"
@@ -38,6 +39,7 @@ void readVoxels(openvdb::io::File& file, const std::string& name, const ProbeGri
 }  // namespace
 
 Volume readVdb(const std::string& path) {
+  requireVdbChecksum(path);
   openvdb::initialize();
   try {
     openvdb::io::File file(path);

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "formats/AtomicFile.h"
+#include "formats/VdbChecksum.h"
 #include "formats/VolumeLayout.h"
 #include "formats/VolumeMetadata.h"
 
@@ -35,6 +36,7 @@ openvdb::MetaMap fileMetadata(const Volume& v, const Basis& basis) {
   meta.insertMeta("baker.dims", openvdb::Vec3IMetadata(openvdb::Vec3i(g.dims.x(), g.dims.y(), g.dims.z())));
   meta.insertMeta("baker.origin", openvdb::Vec3DMetadata(openvdb::Vec3d(g.origin.x(), g.origin.y(), g.origin.z())));
   meta.insertMeta("baker.spacing", openvdb::DoubleMetadata(g.spacing));
+  meta.insertMeta(kVdbChecksumKey, openvdb::StringMetadata(kVdbChecksumPlaceholder));
   return meta;
 }
 
@@ -69,6 +71,7 @@ void writeVdb(const Volume& volume, const Basis& basis, const std::string& path)
     openvdb::io::File file(out.temporaryPath());
     file.write(grids, fileMetadata(volume, basis));
     file.close();
+    sealVdbChecksum(out.temporaryPath());
   } catch (const openvdb::Exception& e) {
     throw std::runtime_error(fmt::format("{}: cannot write OpenVDB file: {}", path, e.what()));
   }

@@ -2,9 +2,12 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <charconv>
 #include <cmath>
 
 #include "bake/BasisRegistry.h"
+#include "bake/MemoryEstimate.h"
 #include "common/Error.h"
 #include "formats/VolumeLayout.h"
 #include "formats/VolumeMetadata.h"
@@ -15,7 +18,30 @@ namespace baker {
 // corrupted size is refused before it allocates.
 constexpr double kMaxProbesRead = double(1 << 28);
 
+// The oldest format whose keys still mean what this reader takes them to mean.
+constexpr int kOldestFormatRead = 2;
+
+namespace {
+
+void requireKnownFormatVersion(const std::vector<std::pair<std::string, std::string>>& text, const std::string& path) {
+  const auto entry = std::find_if(text.begin(), text.end(), [](const auto& e) { return e.first == "baker.format_version"; });
+  if (entry == text.end()) throw InputError(fmt::format("{}: baker.format_version is missing", path));
+  int version = 0;
+  const auto [end, error] = std::from_chars(entry->second.data(), entry->second.data() + entry->second.size(), version);
+  if (error != std::errc() || end != entry->second.data() + entry->second.size())
+    throw InputError(fmt::format("{}: baker.format_version \"{}\" is not a whole number", path, entry->second));
+  if (version > kVolumeFormatVersion)
+    throw InputError(fmt::format("{}: baker.format_version is {}: written by a newer baker (this one reads formats {} to "
+                                 "{})", path, version, kOldestFormatRead, kVolumeFormatVersion));
+  if (version < kOldestFormatRead)
+    throw InputError(fmt::format("{}: baker.format_version is {}: too old to read (formats {} to {}); bake it again",
+                                 path, version, kOldestFormatRead, kVolumeFormatVersion));
+}
+
+}  // namespace
+
 Volume VolumeHeader::emptyVolume(const std::string& path) const {
+  requireKnownFormatVersion(text, path);
   const std::unique_ptr<Basis> basis = makeBasis(basisName);
   if (coefficientsPerProbe != basis->totalCoefficients())
     throw InputError(fmt::format("{}: baker.coefficients_per_probe is {}, but {} has {}", path, coefficientsPerProbe,
@@ -26,6 +52,12 @@ Volume VolumeHeader::emptyVolume(const std::string& path) const {
   const Eigen::Vector3i& d = grid.dims;
   if (d.x() <= 0 || d.y() <= 0 || d.z() <= 0 || double(d.x()) * d.y() * d.z() > kMaxProbesRead)
     throw InputError(fmt::format("{}: baker.dims ({}, {}, {}) is not a valid grid size", path, d.x(), d.y(), d.z()));
+  // Half of the bake's estimate: reading holds the volume once. Checked before allocating, so
+  // that a damaged size is refused rather than exhausting memory.
+  const double needed = volumeMemoryBytes(grid, *basis) / 2;
+  if (needed > double(physicalMemoryBytes()))
+    throw InputError(fmt::format("{}: baker.dims ({}, {}, {}) in {} would need {:.3g} GiB, more than this machine's "
+                                 "memory", path, d.x(), d.y(), d.z(), basisName, needed / double(1ull << 30)));
   if (!(grid.spacing > 0.0) || !std::isfinite(grid.spacing))
     throw InputError(fmt::format("{}: baker.spacing must be a positive number, got {}", path, grid.spacing));
   if (!grid.origin.allFinite()) throw InputError(fmt::format("{}: baker.origin is not finite", path));

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/Error.h"
+#include "formats/Fnv1a64.h"
 #include "formats/ReconstructionData.h"
 #include "formats/VolumeLayout.h"
 
@@ -60,13 +61,13 @@ void readSettings(const std::vector<std::pair<std::string, std::string>>& metada
 std::string fileHash(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(fmt::format("{}: cannot read the file to hash it", path));
-  std::uint64_t h = 0xcbf29ce484222325ull;
+  Fnv1a64 hash;
   char buffer[1 << 16];
   while (in) {
     in.read(buffer, sizeof buffer);
-    for (std::streamsize i = 0; i < in.gcount(); ++i) h = (h ^ std::uint8_t(buffer[i])) * 0x100000001b3ull;
+    hash.add(buffer, std::size_t(in.gcount()));
   }
-  return fmt::format("{:016x}", h);
+  return fmt::format("{:016x}", hash.value());
 }
 
 }  // namespace baker

@@ -15,7 +15,8 @@ namespace baker {
 std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume& volume, const Basis& basis);
 
 // The metadata format version readers check; raised when the meaning of a key changes.
-constexpr int kVolumeFormatVersion = 2;
+// 3: .vdb files carry a checksum of their bytes (formats/VdbChecksum.h).
+constexpr int kVolumeFormatVersion = 3;
 
 // Recovers volume.settings from "baker.setting.*" keys.
 void readSettings(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume);

@@ -1,3 +1,4 @@
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
@@ -53,6 +54,13 @@ class BadInput : public ::testing::Test {
   }
   std::string dir_, scene_;
 };
+
+// Coefficients >= 0 bound nothing when the functions themselves change sign.
+TEST_F(BadInput, NonNegativeWithSignChangingFunctions) {
+  for (const char* basis : {"sh-l2", "ad-rgb", "ad-ycocg"})
+    expectRejected(fmt::format("'{}' --basis {} --non-negative --out out.vdb", scene_, basis),
+                   fmt::format("--non-negative: {} functions change sign", basis));
+}
 
 TEST_F(BadInput, MissingSceneFile) { expectRejected("no_such_scene.gltf --out out.vdb", "no_such_scene.gltf"); }
 

@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <random>
 
+#include "bake/BasisRegistry.h"
 #include "bake/NonNegativeProjection.h"
 
 namespace baker {
@@ -49,6 +50,16 @@ TEST(NonNegativeProjection, SatisfiesTheOptimalityConditions) {
     }
   }
   EXPECT_GT(clamped, 100);  // the constraint was actually exercised
+}
+
+// Which bases --non-negative serves: those whose channel-0 functions never go below zero. SH
+// bands above 0 change sign, and so do the Bézier patches of ad-rgb and ad-ycocg's Y, whose
+// tangent terms dip below zero between vertices.
+TEST(NonNegativeFunctions, TellsSignChangingBasesFromNonNegativeOnes) {
+  for (const char* name : {"sh-l1", "sh-l2", "sh-l8", "ad-rgb", "ad-rgb-flat", "ad-ycocg"})
+    EXPECT_FALSE(functionsAreNonNegative(makeBasis(name)->functions(0))) << name;
+  for (const char* name : {"sh-l0", "ad-linear", "ad-cos2", "ad-srbf", "ambient-cube", "sg-6", "sg-12", "sg-64"})
+    EXPECT_TRUE(functionsAreNonNegative(makeBasis(name)->functions(0))) << name;
 }
 
 }  // namespace

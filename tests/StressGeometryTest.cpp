@@ -1,5 +1,5 @@
-// Geometry that strains a ray tracer: triangles of zero area, slivers a hundred thousand times
-// longer than wide, needles whose area underflows, two surfaces in one plane, and one
+// Geometry that strains a ray tracer: triangles of zero area, slivers five thousand times
+// longer than wide, needles whose area all but underflows, two surfaces in one plane, and one
 // primitive of two million triangles. Each loads, bakes finite, and bakes what it should.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -37,7 +37,7 @@ class StressGeometry : public ::testing::Test {
     scene.environment = Environment::constant(Eigen::Vector3f::Constant(kSky));
     return scene;
   }
-  // The probe's rays at `position` that head down (−Z) and escape.
+  // The probe's rays that head down (−Z) and escape.
   static int escapingDownwards(const test::BakedProbe& probe) {
     int escaping = 0;
     for (std::size_t r = 0; r < probe.samples.directions.size(); ++r)
@@ -50,7 +50,7 @@ class StressGeometry : public ::testing::Test {
 };
 
 // The square [−1, 1]² at z = 0, facing +Z, as a fan about its centre with `perSide` vertices
-// along each side: triangles 2 long and 2/perSide wide at the rim.
+// along each side: triangles 1 to 1.4 long and 2/perSide wide at the rim.
 std::vector<float> fanSquare(int perSide) {
   std::vector<Eigen::Vector3f> rim;
   for (int side = 0; side < 4; ++side)
@@ -87,8 +87,8 @@ TEST_F(StressGeometry, ZeroAreaTrianglesAreSkippedWithAWarning) {
   for (float c : probe.coefficients) EXPECT_TRUE(std::isfinite(c));
 }
 
-// 40 000 slivers (2 m long, 0.1 mm wide at the rim) and needles down to 1e-20 m high tile a
-// floor: every normal is a finite unit vector, and no ray slips between neighbours to the sky.
+// 40 000 slivers (1 to 1.4 m long, 0.2 mm wide at the rim) and needles down to 1e-20 m high
+// tile a floor: every normal is a finite unit vector, and no ray slips between neighbours to the sky.
 TEST_F(StressGeometry, SliversAndNeedlesLeaveNoCracksAndFiniteNormals) {
   GltfBuilder gltf;
   std::vector<float> positions = fanSquare(10000);

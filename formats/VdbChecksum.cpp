@@ -1,0 +1,125 @@
+#include "formats/VdbChecksum.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <stdexcept>
+#include <vector>
+
+#include "common/Error.h"
+#include "formats/Fnv1a64.h"
+
+namespace baker {
+namespace {
+
+constexpr std::size_t kDigits = 16;
+
+void appendLength(std::string& bytes, std::uint32_t length) {
+  // OpenVDB writes lengths as 32-bit integers in the machine's byte order: little-endian here.
+  for (int b = 0; b < 4; ++b) bytes.push_back(char((length >> (8 * b)) & 0xff));
+}
+
+// How OpenVDB serialises one string metadata entry, up to its value: the name, the type name
+// and the value's size, each length-prefixed.
+std::string entryPrefix() {
+  std::string bytes;
+  const std::string key = kVdbChecksumKey, type = "string";
+  appendLength(bytes, std::uint32_t(key.size()));
+  bytes += key;
+  appendLength(bytes, std::uint32_t(type.size()));
+  bytes += type;
+  appendLength(bytes, std::uint32_t(kDigits));
+  return bytes;
+}
+
+// Offsets of the checksum digits (just after each occurrence of the entry's prefix), read in
+// pieces that overlap by the prefix's length so that no occurrence is split.
+std::vector<std::uint64_t> digitOffsets(std::ifstream& in) {
+  const std::string prefix = entryPrefix();
+  std::vector<std::uint64_t> offsets;
+  std::vector<char> window(1 << 16);
+  std::size_t kept = 0;
+  std::uint64_t windowStart = 0;
+  while (in) {
+    in.read(window.data() + kept, std::streamsize(window.size() - kept));
+    const std::size_t filled = kept + std::size_t(in.gcount());
+    for (auto it = window.begin(); it != window.begin() + std::ptrdiff_t(filled);) {
+      it = std::search(it, window.begin() + std::ptrdiff_t(filled), prefix.begin(), prefix.end());
+      if (it == window.begin() + std::ptrdiff_t(filled)) break;
+      const std::uint64_t at = windowStart + std::uint64_t(it - window.begin());
+      offsets.push_back(at + prefix.size());
+      if (offsets.size() > 1) return offsets;
+      ++it;
+    }
+    kept = std::min(filled, prefix.size() - 1);
+    std::memmove(window.data(), window.data() + filled - kept, kept);
+    windowStart += filled - kept;
+  }
+  return offsets;
+}
+
+// The hash of the file's bytes with the kDigits bytes at `digits` read as '0'.
+std::uint64_t hashWithPlaceholder(std::ifstream& in, std::uint64_t digits) {
+  in.clear();
+  in.seekg(0);
+  Fnv1a64 hash;
+  std::vector<char> buffer(1 << 16);
+  std::uint64_t position = 0;
+  while (in) {
+    in.read(buffer.data(), std::streamsize(buffer.size()));
+    const std::size_t count = std::size_t(in.gcount());
+    for (std::size_t i = 0; i < count; ++i)
+      if (position + i >= digits && position + i < digits + kDigits) buffer[i] = '0';
+    hash.add(buffer.data(), count);
+    position += count;
+  }
+  return hash.value();
+}
+
+std::string readDigits(std::ifstream& in, std::uint64_t digits) {
+  in.clear();
+  in.seekg(std::streamoff(digits));
+  std::string text(kDigits, '\0');
+  in.read(text.data(), std::streamsize(kDigits));
+  if (std::size_t(in.gcount()) != kDigits) return {};
+  return text;
+}
+
+}  // namespace
+
+void sealVdbChecksum(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error(fmt::format("{}: cannot reopen the written file to seal it", path));
+  const std::vector<std::uint64_t> offsets = digitOffsets(in);
+  if (offsets.size() != 1 || readDigits(in, offsets[0]) != kVdbChecksumPlaceholder)
+    throw std::runtime_error(fmt::format("{}: the checksum placeholder is not in the written file exactly once", path));
+  const std::string digits = fmt::format("{:016x}", hashWithPlaceholder(in, offsets[0]));
+  in.close();
+  std::fstream out(path, std::ios::binary | std::ios::in | std::ios::out);
+  out.seekp(std::streamoff(offsets[0]));
+  out.write(digits.data(), std::streamsize(kDigits));
+  if (!out) throw std::runtime_error(fmt::format("{}: cannot write the checksum", path));
+}
+
+void requireVdbChecksum(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(fmt::format("{}: cannot read the file", path));
+  const std::vector<std::uint64_t> offsets = digitOffsets(in);
+  if (offsets.empty())
+    throw InputError(fmt::format("{}: not a readable OpenVDB volume: it has no '{}' metadata (not written by "
+                                 "baker, or by a version before volume format 3: bake it again)",
+                                 path, kVdbChecksumKey));
+  if (offsets.size() > 1)
+    throw InputError(fmt::format("{}: not a readable OpenVDB volume: '{}' appears more than once", path, kVdbChecksumKey));
+  const std::string stored = readDigits(in, offsets[0]);
+  const std::string actual = fmt::format("{:016x}", hashWithPlaceholder(in, offsets[0]));
+  if (stored != actual)
+    throw InputError(fmt::format("{}: not a readable OpenVDB volume: its bytes do not match its checksum ({} "
+                                 "stored, {} computed): the file is corrupted, truncated or was edited",
+                                 path, stored.empty() ? "none" : stored, actual));
+}
+
+}  // namespace baker
