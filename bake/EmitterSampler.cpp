@@ -23,7 +23,8 @@ EmitterSampler::EmitterSampler(const Scene& scene) : scene_(scene) {
       const float area = 0.5f * e1.cross(e2).norm();
       const double power = double(area) * luminance(material.emission) * (material.doubleSided ? 2.0 : 1.0);
       if (!(area > 0.0f) || !(power > 0.0)) continue;
-      emitters_.push_back({scene.globalTriangle(i, t), i, t, p0, e1, e2, area, float(power)});
+      emitters_.push_back({scene.globalTriangle(i, t), i, t, p0, e1, e2, scene.frontNormal(i, t), material.doubleSided,
+                           area, float(power)});
       total += power;
     }
   }
@@ -51,6 +52,8 @@ EmitterSampler::Sample EmitterSampler::sample(float xiChoice, float xi1, float x
   out.instance = e.instance;
   out.triangle = e.triangle;
   out.pdfArea = e.probability / e.area;
+  out.frontNormal = e.frontNormal;
+  out.doubleSided = e.doubleSided;
   return out;
 }
 

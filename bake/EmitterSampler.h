@@ -23,6 +23,8 @@ class EmitterSampler {
     std::uint32_t instance = 0, triangle = 0;
     float u = 0.0f, v = 0.0f;  // Embree's barycentrics of the point
     float pdfArea = 0.0f;      // per unit area, including the choice of triangle
+    Eigen::Vector3f frontNormal{0.0f, 0.0f, 1.0f};  // unit, world space (Scene::frontNormal)
+    bool doubleSided = false;  // emits from both sides
   };
   Sample sample(float xiChoice, float xi1, float xi2) const;
   // The per-area density sample() draws a point of this triangle with (0 for non-emitters).
@@ -33,6 +35,8 @@ class EmitterSampler {
     std::uint64_t globalTriangle;
     std::uint32_t instance, triangle;
     Eigen::Vector3f p0, e1, e2;  // world corner and edges
+    Eigen::Vector3f frontNormal;
+    bool doubleSided;
     float area;
     float probability;
   };

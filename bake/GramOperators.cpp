@@ -3,10 +3,12 @@
 #include <fmt/format.h>
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <functional>
 
 #include "bake/ProjectionOperator.h"
+#include "bake/Quadrature.h"
 #include "bake/SphereQuadrature.h"
 #include "bake/SphericalGaussianBasis.h"
 #include "bake/SphericalHarmonics.h"
@@ -37,15 +39,56 @@ Eigen::MatrixXd sampleFunctions(const SphericalFunctions& f, const DirectionSet&
 
 Eigen::VectorXd weightsOf(const DirectionSet& q) { return Eigen::Map<const Eigen::VectorXd>(q.weights.data(), q.size()); }
 
+bool isPolynomial(const SphericalFunctions& f) { return f.polynomialDegree() >= 0; }
+
+// A rule for every product f_i·g_j: the Gauss product rule of the two sets' combined degree
+// when both are polynomials (exact, a few hundred nodes), otherwise the piecewise rule of
+// `order` split along both sets' kinks.
+DirectionSet productQuadrature(const SphericalFunctions& f, const SphericalFunctions& g, int order) {
+  if (isPolynomial(f) && isPolynomial(g)) {
+    const int degree = f.polynomialDegree() + g.polynomialDegree();
+    return gaussProductSphere(degree / 2 + 1, degree + 1);
+  }
+  std::vector<Eigen::Vector3d> kinks = f.kinkPlanes();
+  for (const Eigen::Vector3d& n : g.kinkPlanes()) kinks.push_back(n);
+  return piecewiseSphereQuadrature(order, kinks);
+}
+
+// Σ_k w_k f(d_k) g(d_k)ᵀ over the rule, one block of nodes at a time: a table of every value at
+// every node would take count × nodes doubles, nearly 1 GB for SH of order 24 on the tiling.
+Eigen::MatrixXd weightedProducts(const SphericalFunctions& f, const SphericalFunctions& g, const DirectionSet& q) {
+  constexpr int kBlock = 512;
+  const bool same = &f == &g;
+  Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(f.count(), g.count());
+  Eigen::MatrixXd fValues(f.count(), kBlock), weighted(f.count(), kBlock), gValues(same ? 0 : g.count(), kBlock);
+  for (std::size_t first = 0; first < q.size(); first += kBlock) {
+    const int n = int(std::min<std::size_t>(kBlock, q.size() - first));
+    for (int k = 0; k < n; ++k) {
+      f.evaluate(q.directions[first + k], fValues.col(k).data());
+      weighted.col(k) = q.weights[first + k] * fValues.col(k);
+      if (!same) g.evaluate(q.directions[first + k], gValues.col(k).data());
+    }
+    sum.noalias() += weighted.leftCols(n) * (same ? fValues : gValues).leftCols(n).transpose();
+  }
+  return sum;
+}
+
 // ∫ f_i² dω for every function, with the piecewise quadrature of `order`.
 Eigen::VectorXd squaredNorms(const SphericalFunctions& f, int order) {
   const DirectionSet q = piecewiseSphereQuadrature(order, f.kinkPlanes());
-  return sampleFunctions(f, q).cwiseAbs2().transpose() * weightsOf(q);
+  Eigen::VectorXd sum = Eigen::VectorXd::Zero(f.count()), values(f.count());
+  for (std::size_t k = 0; k < q.size(); ++k) {
+    f.evaluate(q.directions[k], values.data());
+    sum += q.weights[k] * values.cwiseAbs2();
+  }
+  return sum;
 }
 
 // Lobes far sharper than a quadrature piece fall between its nodes: the Gram matrix comes out
-// wrong, and often still well conditioned, so only a second, finer rule can tell.
+// wrong, and often still well conditioned, so only a second, finer rule can tell. Polynomials
+// have nothing to fall between the nodes of their exact rule.
 void requireResolvedByQuadrature(const SphericalFunctions& f, const Eigen::MatrixXd& gram, const std::string& label) {
+  if (isPolynomial(f)) return;
   const Eigen::VectorXd finer = squaredNorms(f, kCheckQuadratureOrder);
   const double disagreement = (gram.diagonal() - finer).cwiseAbs().maxCoeff() / finer.cwiseAbs().maxCoeff();
   if (!(disagreement <= kMaxQuadratureDisagreement))
@@ -66,12 +109,7 @@ std::string describe(const SphericalFunctions& f, const std::string& label) {
 }  // namespace
 
 Eigen::MatrixXd innerProducts(const SphericalFunctions& f, const SphericalFunctions& g, int order) {
-  std::vector<Eigen::Vector3d> kinks = f.kinkPlanes();
-  for (const Eigen::Vector3d& n : g.kinkPlanes()) kinks.push_back(n);
-  const DirectionSet q = piecewiseSphereQuadrature(order, kinks);
-  const Eigen::MatrixXd fv = sampleFunctions(f, q);
-  if (&f == &g) return fv.transpose() * weightsOf(q).asDiagonal() * fv;
-  return fv.transpose() * weightsOf(q).asDiagonal() * sampleFunctions(g, q);
+  return weightedProducts(f, g, productQuadrature(f, g, order));
 }
 
 double clampedCosineBand(int l) {
@@ -163,8 +201,7 @@ int resolvableShOrder(std::size_t sampleCount) {
 Eigen::MatrixXd GramOperators::irradianceFromSamples(const DirectionSet& samples, int shOrder,
                                                      const BandWindow& window) const {
   const SphericalHarmonics sh(shOrder);
-  const ProjectionOperator fit = leastSquaresProjection(sh, samples, label_ + " (SH fit of the samples)");
-  return irradianceFromSh(shOrder, window) * fit.matrix;
+  return leastSquaresProjection(irradianceFromSh(shOrder, window), sh, samples, label_ + " (SH fit of the samples)");
 }
 
 Eigen::MatrixXd GramOperators::irradianceFromSh(int order, const BandWindow& window) const {

@@ -14,7 +14,8 @@ namespace baker {
 // no Gram or moment entry of any basis by more than 1e-12 relative (SphereQuadratureTest).
 constexpr int kExactQuadratureOrder = 16;
 
-// Inner products ∫ f_i g_j dω with the piecewise quadrature split along both sets' kinks.
+// Inner products ∫ f_i g_j dω with the piecewise quadrature split along both sets' kinks, or,
+// when both sets are polynomials (SH), exactly by a Gauss product rule whatever `order`.
 Eigen::MatrixXd innerProducts(const SphericalFunctions& f, const SphericalFunctions& g,
                               int order = kExactQuadratureOrder);
 

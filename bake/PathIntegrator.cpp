@@ -41,8 +41,8 @@ Eigen::Vector3f cosineDirection(const Eigen::Vector3f& normal, float xi1, float 
 }  // namespace
 
 struct PathIntegrator::Vertex {
-  Eigen::Vector3f point;
-  Eigen::Vector3f normal;  // geometric, on the side the path arrived from
+  Eigen::Vector3f origin;  // where its rays start: the hit point, offset along the normal
+  Eigen::Vector3f normal;  // geometric, unit, on the side the path arrived from
   Eigen::Vector3f albedo;
   Eigen::Vector3f throughput;
   int path = 0;
@@ -65,16 +65,24 @@ float PathIntegrator::rayOffset(const Eigen::Vector3f& point) const {
   return 32.0f * (std::nextafter(magnitude, std::numeric_limits<float>::infinity()) - magnitude);
 }
 
-bool PathIntegrator::makeVertex(const Hit& hit, const SurfaceSample& surface, const Eigen::Vector3f& origin,
+bool PathIntegrator::makeVertex(const Hit& hit, const Eigen::Vector3f& albedo, const Eigen::Vector3f& origin,
                                 const Eigen::Vector3f& direction, const Eigen::Vector3f& throughput,
                                 Vertex* vertex) const {
-  if (!(surface.albedo.maxCoeff() > 0.0f)) return false;
-  const Eigen::Vector3f front = scene_.frontNormal(hit.instance, hit.triangle);
-  vertex->point = origin + hit.distance * direction;
+  if (!(albedo.maxCoeff() > 0.0f)) return false;
+  const Eigen::Vector3f front = hit.frontNormal.normalized();
+  const Eigen::Vector3f point = origin + hit.distance * direction;
   vertex->normal = hit.frontFace ? front : Eigen::Vector3f(-front);
-  vertex->albedo = surface.albedo;
+  vertex->origin = point + rayOffset(point) * vertex->normal;
+  vertex->albedo = albedo;
   vertex->throughput = throughput;
   return true;
+}
+
+void PathIntegrator::prefetchTextures(const Hit* hits, int count) const {
+  if (scene_.images.empty()) return;
+  for (int i = 0; i < count; ++i)
+    if (!hits[i].missed())
+      prefetchSurface(scene_, scene_.instances[hits[i].instance].mesh, hits[i].triangle, hits[i].u, hits[i].v);
 }
 
 void PathIntegrator::trace(const Eigen::Vector3f& position, std::uint64_t probeId, const Eigen::Vector3f* directions,
@@ -90,6 +98,7 @@ void PathIntegrator::trace(const Eigen::Vector3f& position, std::uint64_t probeI
     const int n = std::min(8, count - first);
     tracer_.intersect8(position, directions + first, n, hits);
     counts->probe += n;
+    prefetchTextures(hits, n);
     for (int i = 0; i < n; ++i) {
       const int ray = first + i;
       const Hit& hit = hits[i];
@@ -99,11 +108,13 @@ void PathIntegrator::trace(const Eigen::Vector3f& position, std::uint64_t probeI
         if (seeSky) radiance[ray] = sky.radiance(directions[ray]);
         continue;
       }
-      if (!settings_.emission && settings_.bounces == 0) continue;
-      const SurfaceSample s = shadeSurface(scene_, scene_.instances[hit.instance].mesh, hit.triangle, hit.u, hit.v);
-      if (settings_.emission && (hit.frontFace || s.doubleSided)) radiance[ray] = s.emission;
+      const std::uint32_t mesh = scene_.instances[hit.instance].mesh;
+      const Material& material = scene_.material(hit.instance, hit.triangle);
+      if (settings_.emission && (hit.frontFace || material.doubleSided) && material.emissive())
+        radiance[ray] = surfaceEmission(scene_, mesh, hit.triangle, hit.u, hit.v);
       Vertex v;
-      if (settings_.bounces > 0 && makeVertex(hit, s, position, directions[ray], Eigen::Vector3f::Ones(), &v)) {
+      if (settings_.bounces > 0 && makeVertex(hit, surfaceAlbedo(scene_, mesh, hit.triangle, hit.u, hit.v), position,
+                                              directions[ray], Eigen::Vector3f::Ones(), &v)) {
         v.path = ray;
         v.random = PathRandom(settings_.seed, probeId, std::uint64_t(ray));
         vertices.push_back(v);
@@ -146,10 +157,9 @@ void PathIntegrator::addNextEvents(std::vector<Vertex>& vertices, Eigen::Vector3
     pending.clear();
   };
 
-  for (Vertex& v : vertices) {
-    const Eigen::Vector3f origin = v.point + rayOffset(v.point) * v.normal;
-    const Eigen::Vector3f reflect = v.throughput.cwiseProduct(v.albedo) * kInvPi;
-    if (settings_.punctualLights) {
+  if (settings_.punctualLights && !scene_.lights.empty()) {
+    for (const Vertex& v : vertices) {
+      const Eigen::Vector3f reflect = v.throughput.cwiseProduct(v.albedo) * kInvPi;
       for (const PunctualLight& light : scene_.lights) {
         Eigen::Vector3f toLight;
         float distance = std::numeric_limits<float>::infinity();
@@ -157,7 +167,7 @@ void PathIntegrator::addNextEvents(std::vector<Vertex>& vertices, Eigen::Vector3
         if (light.type == PunctualLight::Type::Directional) {
           toLight = -light.direction;
         } else {
-          const Eigen::Vector3f d = light.position - origin;
+          const Eigen::Vector3f d = light.position - v.origin;
           distance = d.norm();
           if (!(distance > 0.0f)) continue;
           toLight = d / distance;
@@ -167,37 +177,52 @@ void PathIntegrator::addNextEvents(std::vector<Vertex>& vertices, Eigen::Vector3
         const float cosine = v.normal.dot(toLight);
         // A light almost on the surface can exceed single precision: dropped, as at probes.
         if (cosine <= 0.0f || !(irradiance.maxCoeff() > 0.0f) || !irradiance.allFinite()) continue;
-        rays.push_back({origin, toLight, 0.0f, distance});
+        rays.push_back({v.origin, toLight, 0.0f, distance});
         pending.push_back({v.path, reflect.cwiseProduct(irradiance) * cosine});
       }
     }
+    resolve(&counts->punctualShadow);
   }
-  resolve(&counts->punctualShadow);
 
   if (sampleEmitters_) {
+    // Every vertex's point on an emitter is drawn (and its texels prefetched) before any is
+    // shaded, so that the scattered emission lookups wait for memory together.
+    struct EmitterPoint {
+      const Vertex* vertex;
+      EmitterSampler::Sample sample;
+      float xiCoverage;
+    };
+    thread_local std::vector<EmitterPoint> points;
+    points.clear();
     for (Vertex& v : vertices) {
       const float xiChoice = v.random.uniform(), xi1 = v.random.uniform(), xi2 = v.random.uniform();
       const float xiCoverage = v.random.uniform();
       const EmitterSampler::Sample s = emitters_.sample(xiChoice, xi1, xi2);
-      const Eigen::Vector3f origin = v.point + rayOffset(v.point) * v.normal;
-      const Eigen::Vector3f d = s.point - origin;
+      if (!scene_.images.empty()) prefetchSurface(scene_, scene_.instances[s.instance].mesh, s.triangle, s.u, s.v);
+      points.push_back({&v, s, xiCoverage});
+    }
+    for (const EmitterPoint& point : points) {
+      const Vertex& v = *point.vertex;
+      const EmitterSampler::Sample& s = point.sample;
+      const float xiCoverage = point.xiCoverage;
+      const Eigen::Vector3f d = s.point - v.origin;
       const float distance = d.norm();
       if (!(distance > 0.0f)) continue;
       const Eigen::Vector3f toLight = d / distance;
       const float cosine = v.normal.dot(toLight);
       if (cosine <= 0.0f) continue;
+      const float cosLight = -s.frontNormal.dot(toLight);
+      if (std::abs(cosLight) < 1e-6f || (cosLight < 0.0f && !s.doubleSided)) continue;
       const std::uint32_t mesh = scene_.instances[s.instance].mesh;
-      const SurfaceSample emitter = shadeSurface(scene_, mesh, s.triangle, s.u, s.v);
-      const float cosLight = -scene_.frontNormal(s.instance, s.triangle).dot(toLight);
-      if (std::abs(cosLight) < 1e-6f || (cosLight < 0.0f && !emitter.doubleSided)) continue;
       if (settings_.alphaFilters && !surfaceStopsRay(scene_, mesh, s.triangle, s.u, s.v, xiCoverage))
         continue;  // a transparent texel
       const float pdfLight = s.pdfArea * distance * distance / std::abs(cosLight);
       const float weight = powerHeuristic(pdfLight, cosine * kInvPi);
-      const Eigen::Vector3f contribution =
-          v.throughput.cwiseProduct(v.albedo).cwiseProduct(emitter.emission) * (kInvPi * cosine * weight / pdfLight);
+      const Eigen::Vector3f contribution = v.throughput.cwiseProduct(v.albedo).cwiseProduct(
+                                               surfaceEmission(scene_, mesh, s.triangle, s.u, s.v)) *
+                                           (kInvPi * cosine * weight / pdfLight);
       if (!(contribution.maxCoeff() > 0.0f) || !contribution.allFinite()) continue;
-      rays.push_back({origin, toLight, 0.0f, distance * (1.0f - kShadowShortening)});
+      rays.push_back({v.origin, toLight, 0.0f, distance * (1.0f - kShadowShortening)});
       pending.push_back({v.path, contribution});
     }
     resolve(&counts->emitterShadow);
@@ -214,8 +239,7 @@ void PathIntegrator::addNextEvents(std::vector<Vertex>& vertices, Eigen::Vector3
       const Eigen::Vector3f contribution =
           v.throughput.cwiseProduct(v.albedo).cwiseProduct(s.radiance) * (kInvPi * cosine * weight / s.pdf);
       if (!(contribution.maxCoeff() > 0.0f) || !contribution.allFinite()) continue;
-      rays.push_back({v.point + rayOffset(v.point) * v.normal, s.direction, 0.0f,
-                      std::numeric_limits<float>::infinity()});
+      rays.push_back({v.origin, s.direction, 0.0f, std::numeric_limits<float>::infinity()});
       pending.push_back({v.path, contribution});
     }
     resolve(&counts->environmentShadow);
@@ -224,14 +248,13 @@ void PathIntegrator::addNextEvents(std::vector<Vertex>& vertices, Eigen::Vector3
 
 void PathIntegrator::continuePaths(std::vector<Vertex>& vertices, bool keepVertices, Eigen::Vector3f* radiance,
                                    RayCounts* counts) const {
-  thread_local std::vector<Vertex> survivors;
   thread_local std::vector<Ray> rays;
   thread_local std::vector<float> bsdfPdf;
-  thread_local std::vector<Vertex> next;
-  survivors.clear();
   rays.clear();
   bsdfPdf.clear();
-  next.clear();
+  // The paths that go on are compacted in place (vertex k traces rays[k]), and so are the
+  // vertices their rays make: a vertex is written only over one already read.
+  std::size_t survivors = 0;
   for (Vertex& v : vertices) {
     const float xi1 = v.random.uniform(), xi2 = v.random.uniform();
     const Eigen::Vector3f direction = cosineDirection(v.normal, xi1, xi2);
@@ -244,20 +267,21 @@ void PathIntegrator::continuePaths(std::vector<Vertex>& vertices, bool keepVerti
       if (v.random.uniform() >= survival) continue;
       v.throughput /= survival;
     }
-    rays.push_back({v.point + rayOffset(v.point) * v.normal, direction, 0.0f,
-                    std::numeric_limits<float>::infinity()});
+    rays.push_back({v.origin, direction, 0.0f, std::numeric_limits<float>::infinity()});
     bsdfPdf.push_back(cosine * kInvPi);
-    survivors.push_back(v);
+    vertices[survivors++] = v;
   }
 
   const Environment& sky = scene_.environment;
   Hit hits[8];
+  std::size_t kept = 0;
   for (std::size_t first = 0; first < rays.size(); first += 8) {
     const int n = int(std::min<std::size_t>(8, rays.size() - first));
     tracer_.intersect8(rays.data() + first, n, hits);
     counts->bounce += n;
+    prefetchTextures(hits, n);
     for (int i = 0; i < n; ++i) {
-      const Vertex& from = survivors[first + i];
+      const Vertex from = vertices[first + i];  // a copy: the next vertex may take its place
       const Ray& ray = rays[first + i];
       const float pdf = bsdfPdf[first + i];
       const Hit& hit = hits[i];
@@ -269,25 +293,28 @@ void PathIntegrator::continuePaths(std::vector<Vertex>& vertices, bool keepVerti
         continue;
       }
       if (!sampleEmitters_ && !keepVertices) continue;
-      const SurfaceSample s = shadeSurface(scene_, scene_.instances[hit.instance].mesh, hit.triangle, hit.u, hit.v);
-      if (sampleEmitters_) {
-        if ((hit.frontFace || s.doubleSided) && s.emission.maxCoeff() > 0.0f) {
-          const float cosLight = std::abs(scene_.frontNormal(hit.instance, hit.triangle).dot(ray.direction));
+      const std::uint32_t mesh = scene_.instances[hit.instance].mesh;
+      const Material& material = scene_.material(hit.instance, hit.triangle);
+      if (sampleEmitters_ && (hit.frontFace || material.doubleSided) && material.emissive()) {
+        const Eigen::Vector3f emission = surfaceEmission(scene_, mesh, hit.triangle, hit.u, hit.v);
+        if (emission.maxCoeff() > 0.0f) {
+          const float cosLight = std::abs(hit.frontNormal.normalized().dot(ray.direction));
           const float pdfLight =
               cosLight > 0.0f ? emitters_.pdfArea(hit.instance, hit.triangle) * hit.distance * hit.distance / cosLight
                               : 0.0f;
-          radiance[from.path] += from.throughput.cwiseProduct(s.emission) * powerHeuristic(pdf, pdfLight);
+          radiance[from.path] += from.throughput.cwiseProduct(emission) * powerHeuristic(pdf, pdfLight);
         }
       }
-      Vertex v;
-      if (keepVertices && makeVertex(hit, s, ray.origin, ray.direction, from.throughput, &v)) {
-        v.path = from.path;
-        v.random = from.random;
-        next.push_back(v);
+      Vertex& next = vertices[kept];
+      if (keepVertices && makeVertex(hit, surfaceAlbedo(scene_, mesh, hit.triangle, hit.u, hit.v), ray.origin,
+                                     ray.direction, from.throughput, &next)) {
+        next.path = from.path;
+        next.random = from.random;
+        ++kept;
       }
     }
   }
-  vertices.swap(next);
+  vertices.resize(kept);
 }
 
 }  // namespace baker

@@ -6,7 +6,6 @@
 #include "bake/Transport.h"
 #include "scene/RayTracer.h"
 #include "scene/Scene.h"
-#include "scene/Shading.h"
 
 namespace baker {
 
@@ -42,7 +41,10 @@ class PathIntegrator {
   void addNextEvents(std::vector<Vertex>& vertices, Eigen::Vector3f* radiance, RayCounts* counts) const;
   void continuePaths(std::vector<Vertex>& vertices, bool keepVertices, Eigen::Vector3f* radiance,
                      RayCounts* counts) const;
-  bool makeVertex(const Hit& hit, const SurfaceSample& surface, const Eigen::Vector3f& origin,
+  // Texture lookups at scattered hits miss the cache: a packet's are announced before any is
+  // shaded, so that their latencies overlap. Nothing to do in a scene without textures.
+  void prefetchTextures(const Hit* hits, int count) const;
+  bool makeVertex(const Hit& hit, const Eigen::Vector3f& albedo, const Eigen::Vector3f& origin,
                   const Eigen::Vector3f& direction, const Eigen::Vector3f& throughput, Vertex* vertex) const;
 
   const Scene& scene_;

@@ -24,6 +24,13 @@ Eigen::Matrix3f fixedRotation(int index) {
   return q.normalized().toRotationMatrix().cast<float>();
 }
 
+// The order punctual deltas are expanded to: the highest any of the basis's function sets needs.
+int punctualShOrder(const Basis& basis) {
+  int order = 0;
+  for (int c = 0; c < 3; ++c) order = std::max(order, PunctualAtProbe::shOrderFor(basis.functions(c)));
+  return order;
+}
+
 DirectionSet rotated(const DirectionSet& set, const Eigen::Matrix3f& rotation) {
   DirectionSet out = set;
   for (Eigen::Vector3d& d : out.directions) d = (rotation.cast<double>() * d).normalized();
@@ -48,7 +55,7 @@ struct ProbeBaker::ChannelGroup {
   int channelCount = 0;
   int functions = 0;
   std::vector<Eigen::MatrixXf> fromSamples;  // per rotation: functions × rays, radiance → irradiance
-  Eigen::MatrixXd fromPunctualSh;            // functions × PunctualAtProbe::kShCount
+  Eigen::MatrixXd fromPunctualSh;            // functions × PunctualAtProbe::shCount()
   Eigen::MatrixXd gram;                      // for the non-negative solve
 };
 
@@ -57,7 +64,7 @@ ProbeBaker::ProbeBaker(const Scene& scene, const RayTracer& tracer, const Basis&
     : basis_(basis),
       settings_(settings),
       integrator_(scene, tracer, settings.transport),
-      punctual_(scene, tracer),
+      punctual_(scene, tracer, punctualShOrder(basis)),
       coefficientsPerProbe_(basis.totalCoefficients()),
       visibilityPerProbe_(basis.functions(0).count()) {
   const DirectionSet fibonacci = sphericalFibonacci(settings.rays);
@@ -85,7 +92,7 @@ ProbeBaker::ProbeBaker(const Scene& scene, const RayTracer& tracer, const Basis&
     for (const DirectionSet& set : sets)
       group.fromSamples.push_back(ops.irradianceFromSamples(set, shOrder_, settings.projection.window).cast<float>());
     if (punctualAtProbe)
-      group.fromPunctualSh = ops.irradianceFromSh(PunctualAtProbe::kShOrder, settings.projection.window);
+      group.fromPunctualSh = ops.irradianceFromSh(punctual_.shOrder(), settings.projection.window);
     if (settings.projection.nonNegative) group.gram = ops.gram();
     groups_.push_back(std::move(group));
   }
@@ -109,7 +116,8 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
   Eigen::MatrixXf columns(rays, 4 * p);
   const bool punctualAtProbe = settings_.transport.directPunctual && !punctual_.empty();
   Eigen::MatrixXd punctualSh;
-  if (punctualAtProbe) punctualSh.setZero(PunctualAtProbe::kShCount, 3 * p);
+  const int shCount = punctual_.shCount();
+  if (punctualAtProbe) punctualSh.setZero(shCount, 3 * p);
   bool anyPunctual = false;
   std::vector<Eigen::Vector3f> radiance(rays);
   std::vector<float> sky(rays);
@@ -140,10 +148,10 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
         lights = punctual_.visibleLights(task.position, counts);
         if (!lights.empty()) {
           anyPunctual = true;
-          std::vector<double> sh(3 * PunctualAtProbe::kShCount, 0.0);
-          PunctualAtProbe::addHarmonics(lights, sh.data());
-          for (int i = 0; i < PunctualAtProbe::kShCount; ++i) {
-            const Eigen::Vector3d rgb(sh[i], sh[PunctualAtProbe::kShCount + i], sh[2 * PunctualAtProbe::kShCount + i]);
+          std::vector<double> sh(3 * shCount, 0.0);
+          punctual_.addHarmonics(lights, sh.data());
+          for (int i = 0; i < shCount; ++i) {
+            const Eigen::Vector3d rgb(sh[i], sh[shCount + i], sh[2 * shCount + i]);
             const Eigen::Vector3d value = toColorSpace(space, rgb.cast<float>()).cast<double>();
             for (int c = 0; c < 3; ++c) punctualSh(i, c * p + taskIndex) = value[c];
           }

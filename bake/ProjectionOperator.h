@@ -21,4 +21,9 @@ struct ProjectionOperator {
 ProjectionOperator leastSquaresProjection(const SphericalFunctions& functions, const DirectionSet& samples,
                                           const std::string& label);
 
+// left · P for a `left` of few rows (an operator applied after the fit), checked the same way;
+// cheaper than forming P when left has fewer rows than there are samples.
+Eigen::MatrixXd leastSquaresProjection(const Eigen::MatrixXd& left, const SphericalFunctions& functions,
+                                       const DirectionSet& samples, const std::string& label);
+
 }  // namespace baker

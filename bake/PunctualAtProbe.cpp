@@ -1,9 +1,8 @@
 #include "bake/PunctualAtProbe.h"
 
+#include <algorithm>
 #include <memory>
 #include <vector>
-
-#include "bake/SphericalHarmonics.h"
 
 namespace baker {
 
@@ -42,13 +41,18 @@ std::vector<PunctualAtProbe::Arrival> PunctualAtProbe::visibleLights(const Eigen
   return visible;
 }
 
-void PunctualAtProbe::addHarmonics(const std::vector<Arrival>& arrivals, double* sh) {
-  static const SphericalHarmonics harmonics(kShOrder);
-  std::vector<double> y(kShCount);
+int PunctualAtProbe::shOrderFor(const SphericalFunctions& functions) {
+  const int degree = functions.polynomialDegree();
+  return degree >= 0 ? std::min(degree, kMaxShOrder) : kMaxShOrder;
+}
+
+void PunctualAtProbe::addHarmonics(const std::vector<Arrival>& arrivals, double* sh) const {
+  const int count = shCount();
+  std::vector<double> y(count);
   for (const Arrival& a : arrivals) {
-    harmonics.evaluate(a.direction.cast<double>(), y.data());
+    harmonics_.evaluate(a.direction.cast<double>(), y.data());
     for (int c = 0; c < 3; ++c)
-      for (int i = 0; i < kShCount; ++i) sh[c * kShCount + i] += double(a.irradiance[c]) * y[i];
+      for (int i = 0; i < count; ++i) sh[c * count + i] += double(a.irradiance[c]) * y[i];
   }
 }
 

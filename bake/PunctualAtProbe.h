@@ -2,6 +2,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "bake/SphericalHarmonics.h"
 #include "bake/Transport.h"
 #include "scene/RayTracer.h"
 #include "scene/Scene.h"
@@ -18,12 +19,20 @@ class PunctualAtProbe {
   // SH order of the delta's expansion. The clamped cosine's bands fall as l^-5/2, so the moments
   // with any of the bases converge well before it (PunctualAtProbeTest checks against a dense
   // quadrature).
-  static constexpr int kShOrder = 24;
-  static constexpr int kShCount = (kShOrder + 1) * (kShOrder + 1);
+  static constexpr int kMaxShOrder = 24;
 
-  PunctualAtProbe(const Scene& scene, const RayTracer& tracer) : scene_(scene), tracer_(tracer) {}
+  // Expands the deltas to `shOrder` ≤ kMaxShOrder (shOrderFor says how far a basis needs).
+  PunctualAtProbe(const Scene& scene, const RayTracer& tracer, int shOrder)
+      : scene_(scene), tracer_(tracer), harmonics_(shOrder) {}
+
+  // A set of polynomials of degree d has no moment with harmonics above band d (they are
+  // orthogonal to every polynomial of lower degree), so for such bases (SH) the expansion stops
+  // at d and loses nothing; any other set takes kMaxShOrder.
+  static int shOrderFor(const SphericalFunctions& functions);
 
   bool empty() const { return scene_.lights.empty(); }
+  int shOrder() const { return harmonics_.order(); }
+  int shCount() const { return harmonics_.count(); }
   // E⊥ and direction of each light at `position`, unshadowed (zero irradiance when behind a spot's cone).
   struct Arrival {
     Eigen::Vector3f direction;
@@ -34,12 +43,13 @@ class PunctualAtProbe {
 
   // The lights that reach `position` unoccluded (shadow rays from the probe).
   std::vector<Arrival> visibleLights(const Eigen::Vector3f& position, RayCounts* counts) const;
-  // Adds E⊥·Y(ω) in RGB of each arrival to sh (kShCount × 3, column-major).
-  static void addHarmonics(const std::vector<Arrival>& arrivals, double* sh);
+  // Adds E⊥·Y(ω) in RGB of each arrival to sh (shCount() × 3, column-major).
+  void addHarmonics(const std::vector<Arrival>& arrivals, double* sh) const;
 
  private:
   const Scene& scene_;
   const RayTracer& tracer_;
+  SphericalHarmonics harmonics_;
 };
 
 }  // namespace baker

@@ -18,6 +18,11 @@ class SphericalFunctions {
   // its edges and the coordinate planes): exact quadratures split the sphere along them.
   // E.g. clamped lobes max(0, v·d)^p kink on the plane v·d = 0.
   virtual std::vector<Eigen::Vector3d> kinkPlanes() const { return {}; }
+
+  // The degree d when every function is a polynomial of degree ≤ d in the direction's
+  // coordinates, −1 otherwise: products of polynomials have an exact quadrature with a few
+  // hundred nodes, where piecewise-smooth functions need the icosahedral tiling's many.
+  virtual int polynomialDegree() const { return -1; }
 };
 
 }  // namespace baker

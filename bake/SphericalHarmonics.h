@@ -18,6 +18,7 @@ class SphericalHarmonics : public SphericalFunctions {
   int order() const { return order_; }
   int count() const override { return (order_ + 1) * (order_ + 1); }
   void evaluate(const Eigen::Vector3d& direction, double* values) const override;
+  int polynomialDegree() const override { return order_; }
 
  private:
   int order_;

@@ -58,7 +58,7 @@ ColorImage ColorImage::fromBytes(int width, int height, std::vector<std::uint8_t
   ColorImage image;
   image.width_ = width;
   image.height_ = height;
-  image.bytes_ = std::move(rgba);
+  image.bytes_.assign(rgba.begin(), rgba.end());  // copied once into storage that can take huge pages
   return image;
 }
 
@@ -68,7 +68,7 @@ ColorImage ColorImage::fromLinear(int width, int height, std::vector<float> rgba
   ColorImage image;
   image.width_ = width;
   image.height_ = height;
-  image.linear_ = std::move(rgba);
+  image.linear_.assign(rgba.begin(), rgba.end());  // likewise
   return image;
 }
 
@@ -81,22 +81,45 @@ Eigen::Vector4f ColorImage::texel(int x, int y) const {
   return {linear_[k], linear_[k + 1], linear_[k + 2], linear_[k + 3]};
 }
 
-Eigen::Vector4f ColorImage::sample(const Eigen::Vector2f& uv, const SamplerState& sampler) const {
+ColorImage::Footprint ColorImage::footprint(const Eigen::Vector2f& uv, const SamplerState& sampler) const {
   const double s = reduce(std::isfinite(uv.x()) ? uv.x() : 0.0, sampler.wrapS) * width_;
   const double t = reduce(std::isfinite(uv.y()) ? uv.y() : 0.0, sampler.wrapT) * height_;
+  Footprint f;
   if (sampler.nearest) {
-    const int x = wrapIndex(int(std::floor(s)), width_, sampler.wrapS);
-    const int y = wrapIndex(int(std::floor(t)), height_, sampler.wrapT);
-    return texel(x, y);
+    f.x0 = f.x1 = wrapIndex(int(std::floor(s)), width_, sampler.wrapS);
+    f.y0 = f.y1 = wrapIndex(int(std::floor(t)), height_, sampler.wrapT);
+    return f;
   }
   // Texel centres sit at half-integer positions, so bilinear weights come from s − ½.
   const double px = s - 0.5, py = t - 0.5;
   const double fx0 = std::floor(px), fy0 = std::floor(py);
-  const float ax = float(px - fx0), ay = float(py - fy0);
-  const int x0 = wrapIndex(int(fx0), width_, sampler.wrapS), x1 = wrapIndex(int(fx0) + 1, width_, sampler.wrapS);
-  const int y0 = wrapIndex(int(fy0), height_, sampler.wrapT), y1 = wrapIndex(int(fy0) + 1, height_, sampler.wrapT);
-  return (1.0f - ay) * ((1.0f - ax) * texel(x0, y0) + ax * texel(x1, y0)) +
-         ay * ((1.0f - ax) * texel(x0, y1) + ax * texel(x1, y1));
+  f.ax = float(px - fx0);
+  f.ay = float(py - fy0);
+  f.x0 = wrapIndex(int(fx0), width_, sampler.wrapS);
+  f.x1 = wrapIndex(int(fx0) + 1, width_, sampler.wrapS);
+  f.y0 = wrapIndex(int(fy0), height_, sampler.wrapT);
+  f.y1 = wrapIndex(int(fy0) + 1, height_, sampler.wrapT);
+  return f;
+}
+
+Eigen::Vector4f ColorImage::sample(const Eigen::Vector2f& uv, const SamplerState& sampler) const {
+  const Footprint f = footprint(uv, sampler);
+  if (sampler.nearest) return texel(f.x0, f.y0);
+  return (1.0f - f.ay) * ((1.0f - f.ax) * texel(f.x0, f.y0) + f.ax * texel(f.x1, f.y0)) +
+         f.ay * ((1.0f - f.ax) * texel(f.x0, f.y1) + f.ax * texel(f.x1, f.y1));
+}
+
+void ColorImage::prefetch(const Eigen::Vector2f& uv, const SamplerState& sampler) const {
+  const Footprint f = footprint(uv, sampler);
+  for (int y : {f.y0, f.y1})
+    for (int x : {f.x0, f.x1}) {
+      const std::size_t k = (std::size_t(y) * width_ + x) * 4;
+      if (bytes_.empty()) {
+        __builtin_prefetch(linear_.data() + k);
+      } else {
+        __builtin_prefetch(bytes_.data() + k);
+      }
+    }
 }
 
 }  // namespace baker

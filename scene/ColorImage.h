@@ -3,6 +3,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "scene/HugePageAllocator.h"
+
 namespace baker {
 
 // glTF sampler wrap modes, per texture axis.
@@ -38,12 +40,24 @@ class ColorImage {
   // Linear RGBA at glTF texture coordinates `uv`, wrapped and filtered as `sampler` says.
   // Non-finite coordinates read as 0.
   Eigen::Vector4f sample(const Eigen::Vector2f& uv, const SamplerState& sampler) const;
+  // Starts loading the texels sample() reads at `uv` into the cache and returns at once: a bake
+  // looks textures up at scattered points, and a batch of lookups that announces itself first
+  // waits for its cache misses together instead of one after another.
+  void prefetch(const Eigen::Vector2f& uv, const SamplerState& sampler) const;
 
  private:
+  // The texels a lookup at `uv` reads (x0 = x1 and y0 = y1 when nearest) and the bilinear
+  // weights of the second column and row.
+  struct Footprint {
+    int x0 = 0, x1 = 0, y0 = 0, y1 = 0;
+    float ax = 0.0f, ay = 0.0f;
+  };
+  Footprint footprint(const Eigen::Vector2f& uv, const SamplerState& sampler) const;
+
   int width_ = 0;
   int height_ = 0;
-  std::vector<std::uint8_t> bytes_;
-  std::vector<float> linear_;
+  std::vector<std::uint8_t, HugePageAllocator<std::uint8_t>> bytes_;
+  std::vector<float, HugePageAllocator<float>> linear_;
 };
 
 // The exact sRGB transfer curve, encoded value in [0, 1] to linear.

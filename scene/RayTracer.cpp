@@ -83,8 +83,13 @@ RayTracer::RayTracer(const Scene& scene, bool alphaFilters) : scene_(scene), alp
     ++instancedMeshes_;
   }
 
+  frontNormalFromEmbree_.resize(scene.instances.size());
   for (std::uint32_t i = 0; i < scene.instances.size(); ++i) {
     const Instance& instance = scene.instances[i];
+    const bool mirrored = instance.objectToWorld.topLeftCorner<3, 3>().determinant() < 0.0f;
+    frontNormalFromEmbree_[i] = meshScenes_[instance.mesh] ? instance.normalToWorld
+                                                           : Eigen::Matrix3f((mirrored ? -1.0f : 1.0f) *
+                                                                             Eigen::Matrix3f::Identity());
     if (scene.meshes[instance.mesh].triangles.empty()) continue;
     if (!meshScenes_[instance.mesh]) {
       attachMesh(rtcScene_, instance.mesh, instance.objectToWorld, 2 * i);
@@ -147,7 +152,7 @@ void RayTracer::attachMesh(RTCScene target, std::uint32_t meshIndex, const Eigen
 }
 
 Hit RayTracer::decode(unsigned geomID, unsigned instID, unsigned primID, float u, float v, float distance,
-                      const Eigen::Vector3f& direction) const {
+                      const Eigen::Vector3f& geometricNormal, const Eigen::Vector3f& direction) const {
   const bool instanced = instID != RTC_INVALID_GEOMETRY_ID;
   Hit h;
   h.instance = instanced ? instID / 2 : geomID / 2;
@@ -157,7 +162,8 @@ Hit RayTracer::decode(unsigned geomID, unsigned instID, unsigned primID, float u
   h.u = u;
   h.v = v;
   h.distance = distance;
-  h.frontFace = scene_.frontNormal(h.instance, h.triangle).dot(direction) < 0.0f;
+  h.frontNormal = frontNormalFromEmbree_[h.instance] * geometricNormal;
+  h.frontFace = h.frontNormal.dot(direction) < 0.0f;
   return h;
 }
 
@@ -201,7 +207,8 @@ void RayTracer::intersect8(const Ray* rays, int count, Hit* hits) const {
     hits[i] = packet.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID
                   ? Hit{}
                   : decode(packet.hit.geomID[i], packet.hit.instID[0][i], packet.hit.primID[i], packet.hit.u[i],
-                           packet.hit.v[i], packet.ray.tfar[i], rays[i].direction);
+                           packet.hit.v[i], packet.ray.tfar[i],
+                           {packet.hit.Ng_x[i], packet.hit.Ng_y[i], packet.hit.Ng_z[i]}, rays[i].direction);
 }
 
 void RayTracer::occluded(const Ray* rays, int count, bool* blocked) const {

@@ -20,6 +20,9 @@ struct Hit {
   float u = 0.0f, v = 0.0f;  // barycentric weights of the triangle's second and third corners
   float distance = 0.0f;
   bool frontFace = false;  // the ray arrived on glTF's front side (counter-clockwise in object space)
+  // World-space normal of that front side, not normalised: Embree's geometric normal of the hit,
+  // so that shading never has to read the triangle's corners again.
+  Eigen::Vector3f frontNormal{0.0f, 0.0f, 0.0f};
 
   bool missed() const { return triangle == kMiss; }
 };
@@ -76,13 +79,18 @@ class RayTracer {
  private:
   void attachMesh(RTCScene target, std::uint32_t mesh, const Eigen::Matrix4f& transform, unsigned firstId);
   Hit decode(unsigned geomID, unsigned instID, unsigned primID, float u, float v, float distance,
-             const Eigen::Vector3f& direction) const;
+             const Eigen::Vector3f& geometricNormal, const Eigen::Vector3f& direction) const;
 
   const Scene& scene_;
   bool alphaFilters_ = true;
   RTCDevice device_ = nullptr;
   RTCScene rtcScene_ = nullptr;
   std::vector<RTCScene> meshScenes_;  // per mesh; null unless the mesh is instanced
+  // Per instance, Embree's geometric normal of a hit → the world-space front normal. Embree
+  // reports it in the space the triangles were built in: object space for an instanced mesh
+  // (then the instance's normal transform applies), world space for a mesh placed directly,
+  // where the corners' order, and so the normal, flips under a mirroring transform.
+  std::vector<Eigen::Matrix3f> frontNormalFromEmbree_;
   std::vector<std::unique_ptr<FilterTarget>> filterTargets_;  // stable addresses for Embree's user data
   int instancedMeshes_ = 0;
   int filteredGeometries_ = 0;

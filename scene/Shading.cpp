@@ -19,12 +19,17 @@ TrianglePoint pointOf(const Mesh& mesh, std::uint32_t triangle, float u, float v
   return {mesh, mesh.triangles[triangle], 1.0f - u - v, u, v};
 }
 
-Eigen::Vector4f lookup(const Scene& scene, const TextureSlot& slot, const TrianglePoint& p) {
+// The texture coordinates `slot` reads at the point, after its KHR_texture_transform.
+Eigen::Vector2f texCoords(const TextureSlot& slot, const TrianglePoint& p) {
   const auto& sets = p.mesh.texcoords;
   const Eigen::Vector2f uv = std::size_t(slot.texCoord) < sets.size() && !sets[slot.texCoord].empty()
                                  ? p.interpolate(sets[slot.texCoord])
                                  : Eigen::Vector2f::Zero();
-  return scene.images[slot.image].sample(slot.uvTransform * uv.homogeneous(), slot.sampler);
+  return slot.uvTransform * uv.homogeneous();
+}
+
+Eigen::Vector4f lookup(const Scene& scene, const TextureSlot& slot, const TrianglePoint& p) {
+  return scene.images[slot.image].sample(texCoords(slot, p), slot.sampler);
 }
 
 Eigen::Vector4f baseColor(const Scene& scene, const Material& m, const TrianglePoint& p) {
@@ -32,6 +37,11 @@ Eigen::Vector4f baseColor(const Scene& scene, const Material& m, const TriangleP
   if (m.baseColorTexture.present()) c = c.cwiseProduct(lookup(scene, m.baseColorTexture, p));
   if (!p.mesh.colors.empty()) c = c.cwiseProduct(p.interpolate(p.mesh.colors));
   return c;
+}
+
+Eigen::Vector3f emission(const Scene& scene, const Material& m, const TrianglePoint& p) {
+  if (!m.emissiveTexture.present() || !m.emissive()) return m.emission;
+  return m.emission.cwiseProduct(lookup(scene, m.emissiveTexture, p).head<3>());
 }
 
 }  // namespace
@@ -44,11 +54,27 @@ SurfaceSample shadeSurface(const Scene& scene, std::uint32_t mesh, std::uint32_t
   SurfaceSample s;
   s.albedo = base.head<3>();
   s.alpha = material.alphaTested() ? base.w() : 1.0f;
-  s.emission = material.emission;
-  if (material.emissiveTexture.present() && material.emissive())
-    s.emission = s.emission.cwiseProduct(lookup(scene, material.emissiveTexture, p).head<3>());
+  s.emission = emission(scene, material, p);
   s.doubleSided = material.doubleSided;
   return s;
+}
+
+Eigen::Vector3f surfaceAlbedo(const Scene& scene, std::uint32_t mesh, std::uint32_t triangle, float u, float v) {
+  const Mesh& m = scene.meshes[mesh];
+  return baseColor(scene, scene.materials[m.triangleMaterial[triangle]], pointOf(m, triangle, u, v)).head<3>();
+}
+
+Eigen::Vector3f surfaceEmission(const Scene& scene, std::uint32_t mesh, std::uint32_t triangle, float u, float v) {
+  const Mesh& m = scene.meshes[mesh];
+  return emission(scene, scene.materials[m.triangleMaterial[triangle]], pointOf(m, triangle, u, v));
+}
+
+void prefetchSurface(const Scene& scene, std::uint32_t mesh, std::uint32_t triangle, float u, float v) {
+  const Mesh& m = scene.meshes[mesh];
+  const Material& material = scene.materials[m.triangleMaterial[triangle]];
+  const TrianglePoint p = pointOf(m, triangle, u, v);
+  for (const TextureSlot* slot : {&material.baseColorTexture, &material.emissiveTexture})
+    if (slot->present()) scene.images[slot->image].prefetch(texCoords(*slot, p), slot->sampler);
 }
 
 bool surfaceStopsRay(const Scene& scene, std::uint32_t mesh, std::uint32_t triangle, float u, float v, float xi) {

@@ -18,6 +18,15 @@ struct SurfaceSample {
 // triangle's second corner, v for its third.
 SurfaceSample shadeSurface(const Scene& scene, std::uint32_t mesh, std::uint32_t triangle, float u, float v);
 
+// The albedo and the emission of shadeSurface on their own: each is a texture lookup, and a
+// random one costs a cache miss, so a path reads only the one it needs at each point.
+Eigen::Vector3f surfaceAlbedo(const Scene& scene, std::uint32_t mesh, std::uint32_t triangle, float u, float v);
+Eigen::Vector3f surfaceEmission(const Scene& scene, std::uint32_t mesh, std::uint32_t triangle, float u, float v);
+
+// Starts loading the texels those lookups will read at that point, without waiting for them:
+// shading a batch of points after prefetching each overlaps their cache misses.
+void prefetchSurface(const Scene& scene, std::uint32_t mesh, std::uint32_t triangle, float u, float v);
+
 // Whether an alpha-tested surface stops a ray there. MASK: alpha ≥ alphaCutoff, as the glTF
 // spec says. BLEND: stochastic coverage, opaque when xi < alpha, so that the fraction of rays a
 // BLEND surface stops is its alpha (the reference renderer does the same); `xi` is a uniform
