@@ -279,7 +279,7 @@ void PathIntegrator::continuePaths(std::vector<Vertex>& vertices, bool keepVerti
     const int n = int(std::min<std::size_t>(8, rays.size() - first));
     tracer_.intersect8(rays.data() + first, n, hits);
     counts->bounce += n;
-    prefetchTextures(hits, n);
+    if (sampleEmitters_ || keepVertices) prefetchTextures(hits, n);
     for (int i = 0; i < n; ++i) {
       const Vertex from = vertices[first + i];  // a copy: the next vertex may take its place
       const Ray& ray = rays[first + i];

@@ -2,6 +2,7 @@
 //
 //   bench_bake [SCENE.gltf] [--rays N] [--basis NAME] [--spacing M] [--baker PATH] [--json]
 //
+// Times in 1 and in the thread scaling are each the best of five interleaved rounds.
 // 1. Throughput against the ray-tracing limit: bake rays per second (one thread, tracing and
 //    shading and projecting) over the rate at which Embree alone traces exactly the same rays,
 //    recorded during the bake and replayed in the same packets and streams (trace-only mode).
@@ -18,6 +19,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <iostream>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -103,52 +105,61 @@ nlohmann::json run(const Options& o) {
   const auto basis = makeBasis(o.basis);
   const ProbeGrid grid = makeProbeGrid(scene.bounds, o.spacing, std::int64_t(1) << 27);
 
-  // 1 and 2: one thread, the bake recorded, then replayed by Embree alone.
-  double bakeSeconds1 = 0.0, bakeSeconds2 = 0.0, writeSeconds = 0.0;
-  BakeStats stats;
+  // 1, 2 and the thread scaling of 3: the bake recorded once, then rounds of a one-thread bake,
+  // Embree alone replaying its rays, and a two-thread bake. Each is timed at its best round:
+  // on a shared machine noise only ever adds time, and interleaving the three keeps a slow
+  // spell from favouring one of them.
+  constexpr int kRounds = 5;
+  BakeStats stats, twoStats;
+  double replay = std::numeric_limits<double>::infinity();
+  Volume volume;
+  // (TBB applies the smallest parallelism limit alive, so each limit lives only for its bake.)
+  RayTracer::RayLog log;
   {
     tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
-    RayTracer::RayLog log;
     tracer.record(&log);
-    bakeVolume(scene, tracer, *basis, grid, settings, nullptr);  // warm caches, record the rays
+    bakeVolume(scene, tracer, *basis, grid, settings, nullptr);  // warms caches, records the rays
     tracer.record(nullptr);
-    stage = std::chrono::steady_clock::now();
-    const Volume volume = bakeVolume(scene, tracer, *basis, grid, settings, &stats);
-    bakeSeconds1 = secondsSince(stage);
-    const double replay = replaySeconds(tracer, log);
-    const double traced = double(stats.rays.total());
-    const std::string path = (std::filesystem::temp_directory_path() / "bench_bake.vdb").string();
-    stage = std::chrono::steady_clock::now();
-    writeVolume(volume, *basis, VolumeOutput{path});
-    writeSeconds = secondsSince(stage);
-    std::filesystem::remove(path);
-    const double bakeRate = traced / stats.traceSeconds, limitRate = traced / replay;
-    out["throughput"] = {{"rays", traced},
-                         {"bake_mrays_per_second", bakeRate * 1e-6},
-                         {"trace_only_mrays_per_second", limitRate * 1e-6},
-                         {"ratio", bakeRate / limitRate},
-                         {"target", 0.85}};
-    const double shade = std::max(0.0, stats.traceSeconds - replay - stats.projectionSeconds);
-    const double total = loadSeconds + bvhSeconds + stats.operatorSeconds + stats.traceSeconds + writeSeconds;
-    out["stages_seconds"] = {{"load", loadSeconds},   {"bvh", bvhSeconds},
-                             {"operators", stats.operatorSeconds}, {"trace", replay},
-                             {"shade", shade},        {"project", stats.projectionSeconds},
-                             {"write", writeSeconds}, {"total", total}};
-    out["projection_and_write_fraction"] = (stats.projectionSeconds + stats.operatorSeconds + writeSeconds) / total;
-    out["projection_and_write_target"] = 0.05;
   }
-  // 3. Scaling with threads and with probes.
-  {
-    tbb::global_control two(tbb::global_control::max_allowed_parallelism, 2);
-    stage = std::chrono::steady_clock::now();
-    BakeStats twoStats;
-    bakeVolume(scene, tracer, *basis, grid, settings, &twoStats);
-    bakeSeconds2 = secondsSince(stage);
-    out["threads"] = {{"one_thread_trace_seconds", stats.traceSeconds},
-                      {"two_threads_trace_seconds", twoStats.traceSeconds},
-                      {"speedup", stats.traceSeconds / twoStats.traceSeconds},
-                      {"target", 1.9}};
+  for (int round = 0; round < kRounds; ++round) {
+    BakeStats s, s2;
+    {
+      tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+      volume = bakeVolume(scene, tracer, *basis, grid, settings, &s);
+      replay = std::min(replay, replaySeconds(tracer, log));
+    }
+    {
+      tbb::global_control two(tbb::global_control::max_allowed_parallelism, 2);
+      bakeVolume(scene, tracer, *basis, grid, settings, &s2);
+    }
+    if (round == 0 || s.traceSeconds < stats.traceSeconds) stats = s;
+    if (round == 0 || s2.traceSeconds < twoStats.traceSeconds) twoStats = s2;
   }
+  const std::string path = (std::filesystem::temp_directory_path() / "bench_bake.vdb").string();
+  stage = std::chrono::steady_clock::now();
+  writeVolume(volume, *basis, VolumeOutput{path});
+  const double writeSeconds = secondsSince(stage);
+  std::filesystem::remove(path);
+  const double traced = double(stats.rays.total());
+  const double bakeRate = traced / stats.traceSeconds, limitRate = traced / replay;
+  out["throughput"] = {{"rays", traced},
+                       {"bake_mrays_per_second", bakeRate * 1e-6},
+                       {"trace_only_mrays_per_second", limitRate * 1e-6},
+                       {"ratio", bakeRate / limitRate},
+                       {"rounds", kRounds},
+                       {"target", 0.85}};
+  const double shade = std::max(0.0, stats.traceSeconds - replay - stats.projectionSeconds);
+  const double total = loadSeconds + bvhSeconds + stats.operatorSeconds + stats.traceSeconds + writeSeconds;
+  out["stages_seconds"] = {{"load", loadSeconds},   {"bvh", bvhSeconds},
+                           {"operators", stats.operatorSeconds}, {"trace", replay},
+                           {"shade", shade},        {"project", stats.projectionSeconds},
+                           {"write", writeSeconds}, {"total", total}};
+  out["projection_and_write_fraction"] = (stats.projectionSeconds + stats.operatorSeconds + writeSeconds) / total;
+  out["projection_and_write_target"] = 0.05;
+  out["threads"] = {{"one_thread_trace_seconds", stats.traceSeconds},
+                    {"two_threads_trace_seconds", twoStats.traceSeconds},
+                    {"speedup", stats.traceSeconds / twoStats.traceSeconds},
+                    {"target", 1.9}};
   nlohmann::json perProbe = nlohmann::json::array();
   for (double factor : {1.0, 2.0, 4.0}) {
     tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);

@@ -62,11 +62,16 @@ PreparedBake prepareBake(const CLI::App& app, const BakeOptions& o, std::ostream
 
   PreparedBake b;
   b.basis = makeBasis(o.basisName, o.sgSharpness);
-  // The constraint is on RGB, Y and visibility, which all use channel 0's functions.
-  if (o.projection.nonNegative && !functionsAreNonNegative(b.basis->functions(0)))
+  // The constraint is on R, G and B (each in its channel's functions), or on Y; visibility uses
+  // channel 0's functions.
+  const int constrainedChannels = b.basis->colorSpace() == ColorSpace::Rgb ? 3 : 1;
+  bool signChanging = false;
+  for (int c = 0; c < constrainedChannels && o.projection.nonNegative; ++c)
+    signChanging = signChanging || !functionsAreNonNegative(b.basis->functions(c));
+  if (signChanging)
     throw InputError(fmt::format("--non-negative: {} functions change sign, so coefficients >= 0 do not make the "
                                  "reconstruction non-negative (and can make its ringing worse); use it with "
-                                 "ad-linear, ad-cos2, ad-srbf, sg-* or ambient-cube",
+                                 "sh-l0, ad-linear, ad-cos2, ad-srbf, sg-* or ambient-cube",
                                  o.basisName));
   if (o.threads > 0)
     b.threadLimit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, o.threads);

@@ -108,6 +108,7 @@ void sealVdbChecksum(const std::string& path) {
   std::fstream out(path, std::ios::binary | std::ios::in | std::ios::out);
   out.seekp(std::streamoff(offsets[0]));
   out.write(digits.data(), std::streamsize(kDigits));
+  out.close();
   if (!out) throw std::runtime_error(fmt::format("{}: cannot write the checksum", path));
 }
 

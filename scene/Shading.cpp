@@ -73,8 +73,12 @@ void prefetchSurface(const Scene& scene, std::uint32_t mesh, std::uint32_t trian
   const Mesh& m = scene.meshes[mesh];
   const Material& material = scene.materials[m.triangleMaterial[triangle]];
   const TrianglePoint p = pointOf(m, triangle, u, v);
-  for (const TextureSlot* slot : {&material.baseColorTexture, &material.emissiveTexture})
-    if (slot->present()) scene.images[slot->image].prefetch(texCoords(*slot, p), slot->sampler);
+  if (material.baseColorTexture.present())
+    scene.images[material.baseColorTexture.image].prefetch(texCoords(material.baseColorTexture, p),
+                                                           material.baseColorTexture.sampler);
+  if (material.emissiveTexture.present() && material.emissive())
+    scene.images[material.emissiveTexture.image].prefetch(texCoords(material.emissiveTexture, p),
+                                                          material.emissiveTexture.sampler);
 }
 
 bool surfaceStopsRay(const Scene& scene, std::uint32_t mesh, std::uint32_t triangle, float u, float v, float xi) {
