@@ -47,4 +47,16 @@ RelativeErrors relativeErrors(const std::vector<ProbeDifference>& differences);
 // Indices into `errors` of the `count` largest values, largest first (ties: lower index first).
 std::vector<std::size_t> largestErrors(const std::vector<double>& errors, std::size_t count);
 
+// The `count` probes with the largest errors, largest first, each with its relativeError set:
+// `probes[i]` is the probe whose error is `errors[i]`.
+template <typename Probe>
+std::vector<Probe> worstProbes(const std::vector<Probe>& probes, const std::vector<double>& errors, std::size_t count) {
+  std::vector<Probe> worst;
+  for (std::size_t q : largestErrors(errors, count)) {
+    worst.push_back(probes[q]);
+    worst.back().relativeError = errors[q];
+  }
+  return worst;
+}
+
 }  // namespace baker

@@ -51,11 +51,7 @@ ReferenceComparison compareWithReference(const Volume& volume, const ReferenceSe
   }
   result.probesCompared = std::int64_t(probes.size());
   result.errors = relativeErrors(differences);
-  for (std::size_t q : largestErrors(result.errors.perProbe, worstCount)) {
-    ReferenceProbeError worst = probes[q];
-    worst.relativeError = result.errors.perProbe[q];
-    result.worst.push_back(worst);
-  }
+  result.worst = worstProbes(probes, result.errors.perProbe, worstCount);
   return result;
 }
 

@@ -108,11 +108,7 @@ VolumeComparison compareVolumes(const Volume& reference, const Volume& candidate
 
   result.probesCompared = std::int64_t(probes.size());
   result.errors = relativeErrors(differences);
-  for (std::size_t q : largestErrors(result.errors.perProbe, worstCount)) {
-    ComparedProbe worst = probes[q];
-    worst.relativeError = result.errors.perProbe[q];
-    result.worst.push_back(worst);
-  }
+  result.worst = worstProbes(probes, result.errors.perProbe, worstCount);
   return result;
 }
 
