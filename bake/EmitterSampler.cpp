@@ -23,8 +23,9 @@ EmitterSampler::EmitterSampler(const Scene& scene) : scene_(scene) {
       const float area = 0.5f * e1.cross(e2).norm();
       const double power = double(area) * luminance(material.emission) * (material.doubleSided ? 2.0 : 1.0);
       if (!(area > 0.0f) || !(power > 0.0)) continue;
-      emitters_.push_back({scene.globalTriangle(i, t), i, t, p0, e1, e2, scene.frontNormal(i, t), material.doubleSided,
-                           area, float(power)});
+      emitters_.push_back({scene.globalTriangle(i, t), i, t, instance.mesh, p0, e1, e2, scene.frontNormal(i, t),
+                           material.emission, area, float(power), material.doubleSided,
+                           material.emissiveTexture.present(), material.alphaTested()});
       total += power;
     }
   }
@@ -32,8 +33,8 @@ EmitterSampler::EmitterSampler(const Scene& scene) : scene_(scene) {
   // already sorted by global triangle.
   double running = 0.0;
   for (Emitter& e : emitters_) {
-    const double p = e.probability / total;
-    e.probability = float(p);
+    const double p = double(e.pdfArea) / total;  // pdfArea held the power until here
+    e.pdfArea = float(p) / e.area;
     running += p;
     cumulative_.push_back(running);
   }
@@ -45,23 +46,15 @@ EmitterSampler::Sample EmitterSampler::sample(float xiChoice, float xi1, float x
   const Emitter& e = emitters_[std::min<std::size_t>(it - cumulative_.begin(), emitters_.size() - 1)];
   // Uniform on the triangle: the square-root warp of the unit square.
   const float s = std::sqrt(xi1);
-  Sample out;
-  out.u = s * (1.0f - xi2);
-  out.v = s * xi2;
-  out.point = e.p0 + out.u * e.e1 + out.v * e.e2;
-  out.instance = e.instance;
-  out.triangle = e.triangle;
-  out.pdfArea = e.probability / e.area;
-  out.frontNormal = e.frontNormal;
-  out.doubleSided = e.doubleSided;
-  return out;
+  const float u = s * (1.0f - xi2), v = s * xi2;
+  return {e.p0 + u * e.e1 + v * e.e2, u, v, &e};
 }
 
 float EmitterSampler::pdfArea(std::uint32_t instance, std::uint32_t triangle) const {
   const std::uint64_t id = scene_.globalTriangle(instance, triangle);
   const auto it = std::lower_bound(emitters_.begin(), emitters_.end(), id,
                                    [](const Emitter& e, std::uint64_t g) { return e.globalTriangle < g; });
-  return it != emitters_.end() && it->globalTriangle == id ? it->probability / it->area : 0.0f;
+  return it != emitters_.end() && it->globalTriangle == id ? it->pdfArea : 0.0f;
 }
 
 }  // namespace baker

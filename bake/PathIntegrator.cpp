@@ -2,10 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <memory>
-#include <vector>
+#include <cstring>
+#include <limits>
 
 #include "bake/PathRandom.h"
+#include "bake/ScratchBuffer.h"
 #include "scene/Shading.h"
 
 namespace baker {
@@ -25,17 +26,51 @@ float powerHeuristic(float pdf, float otherPdf) {
   return a + b > 0.0f ? a / (a + b) : 0.0f;
 }
 
+// cos(2πt) and sin(2πt) for t in [0, 1), to a few float ulps: the angle is reduced to an eighth
+// of a turn, where short Taylor polynomials suffice, then turned by the quarter turns taken off.
+// The library's sincos costs several times as much, and a path needs one per bounce.
+void cosSinTurns(float t, float* cosine, float* sine) {
+  const float quarters = float(int(4.0f * t + 0.5f));  // the nearest quarter turn, 0 to 4
+  const float x = 2.0f * kPi * (t - 0.25f * quarters);  // within ±π/4
+  const float x2 = x * x;
+  const float s = x * (1.0f + x2 * (-1.0f / 6 + x2 * (1.0f / 120 + x2 * (-1.0f / 5040 + x2 * (1.0f / 362880)))));
+  const float c = 1.0f + x2 * (-0.5f + x2 * (1.0f / 24 + x2 * (-1.0f / 720 + x2 * (1.0f / 40320))));
+  switch (int(quarters) & 3) {
+    case 0: *cosine = c, *sine = s; break;
+    case 1: *cosine = -s, *sine = c; break;
+    case 2: *cosine = -c, *sine = -s; break;
+    default: *cosine = s, *sine = -c; break;
+  }
+}
+
 // A cosine-distributed direction about `normal` (pdf cosθ/π), through an orthonormal frame
-// that has no singularity (Duff et al. 2017).
+// that has no singularity (Duff et al. 2017). The frame of a unit normal is orthonormal, so the
+// direction is unit to float rounding and is not normalised again.
 Eigen::Vector3f cosineDirection(const Eigen::Vector3f& normal, float xi1, float xi2) {
-  const float sign = std::copysign(1.0f, normal.z());
-  const float a = -1.0f / (sign + normal.z());
-  const float b = normal.x() * normal.y() * a;
-  const Eigen::Vector3f t(1.0f + sign * normal.x() * normal.x() * a, sign * b, -sign * normal.x());
-  const Eigen::Vector3f s(b, sign + normal.y() * normal.y() * a, -normal.y());
-  const float r = std::sqrt(xi1), phi = 2.0f * kPi * xi2;
-  return (r * std::cos(phi) * t + r * std::sin(phi) * s + std::sqrt(std::max(0.0f, 1.0f - xi1)) * normal)
-      .normalized();
+  const float nx = normal.x(), ny = normal.y(), nz = normal.z();
+  const float sign = std::copysign(1.0f, nz);
+  const float a = -1.0f / (sign + nz);
+  const float b = nx * ny * a;
+  float cosPhi, sinPhi;
+  cosSinTurns(xi2, &cosPhi, &sinPhi);
+  const float r = std::sqrt(xi1);
+  const float x = r * cosPhi, y = r * sinPhi, z = std::sqrt(std::max(0.0f, 1.0f - xi1));
+  // x·t + y·s + z·n with t = (1 + sign·nx²·a, sign·b, −sign·nx) and s = (b, sign + ny²·a, −ny).
+  return {x * (1.0f + sign * nx * nx * a) + y * b + z * nx, x * sign * b + y * (sign + ny * ny * a) + z * ny,
+          -x * sign * nx - y * ny + z * nz};
+}
+
+// A float's spacing to the next larger one, for positive finite normal values: nextafter
+// without the library call.
+float floatStep(float magnitude) {
+  std::uint32_t bits;
+  std::memcpy(&bits, &magnitude, sizeof bits);
+  const std::uint32_t exponent = bits & 0x7f800000u;
+  if (exponent <= (23u << 23)) return std::nextafter(magnitude, std::numeric_limits<float>::infinity()) - magnitude;
+  const std::uint32_t stepBits = exponent - (23u << 23);
+  float step;
+  std::memcpy(&step, &stepBits, sizeof step);
+  return step;
 }
 
 }  // namespace
@@ -47,6 +82,25 @@ struct PathIntegrator::Vertex {
   Eigen::Vector3f throughput;
   int path = 0;
   PathRandom random{0, 0, 0};
+};
+
+// Per-thread arrays reused from probe to probe: a bake traces millions of short wavefronts.
+struct PathIntegrator::Scratch {
+  struct Pending {  // what a shadow ray adds to its path's radiance if nothing blocks it
+    int path;
+    Eigen::Vector3f contribution;
+  };
+  struct EmitterPoint {
+    const Vertex* vertex;
+    EmitterSampler::Sample sample;
+    float xiCoverage;
+  };
+  ScratchBuffer<Vertex> vertices;
+  ScratchBuffer<Ray> rays;
+  ScratchBuffer<Pending> pending;
+  ScratchBuffer<bool> blocked;
+  ScratchBuffer<EmitterPoint> points;
+  ScratchBuffer<float> pdfs;
 };
 
 PathIntegrator::PathIntegrator(const Scene& scene, const RayTracer& tracer, const TransportSettings& settings)
@@ -61,15 +115,14 @@ PathIntegrator::PathIntegrator(const Scene& scene, const RayTracer& tracer, cons
 float PathIntegrator::rayOffset(const Eigen::Vector3f& point) const {
   // A hit point is only known to a few units in the last place of its largest coordinate (and
   // of the scene's size, for points near the origin): step 32 of those off the surface.
-  const float magnitude = std::max(point.cwiseAbs().maxCoeff(), sceneScale_);
-  return 32.0f * (std::nextafter(magnitude, std::numeric_limits<float>::infinity()) - magnitude);
+  return 32.0f * floatStep(std::max(point.cwiseAbs().maxCoeff(), sceneScale_));
 }
 
 bool PathIntegrator::makeVertex(const Hit& hit, const Eigen::Vector3f& albedo, const Eigen::Vector3f& origin,
                                 const Eigen::Vector3f& direction, const Eigen::Vector3f& throughput,
                                 Vertex* vertex) const {
   if (!(albedo.maxCoeff() > 0.0f)) return false;
-  const Eigen::Vector3f front = hit.frontNormal.normalized();
+  const Eigen::Vector3f front = hit.frontNormal * (1.0f / hit.frontNormal.norm());
   const Eigen::Vector3f point = origin + hit.distance * direction;
   vertex->normal = hit.frontFace ? front : Eigen::Vector3f(-front);
   vertex->origin = point + rayOffset(point) * vertex->normal;
@@ -89,10 +142,9 @@ void PathIntegrator::trace(const Eigen::Vector3f& position, std::uint64_t probeI
                            int count, Eigen::Vector3f* radiance, float* visibility, RayCounts* counts) const {
   const Environment& sky = scene_.environment;
   const bool seeSky = settings_.environment && sky.emits();
-  // Scratch space reused from probe to probe on each thread: a bake traces millions of short
-  // wavefronts, and allocating their arrays each time costs as much as shading them.
-  thread_local std::vector<Vertex> vertices;
-  vertices.clear();
+  thread_local Scratch scratch;
+  Vertex* vertices = scratch.vertices.reserve(std::size_t(count));
+  int live = 0;
   Hit hits[8];
   for (int first = 0; first < count; first += 8) {
     const int n = std::min(8, count - first);
@@ -112,53 +164,48 @@ void PathIntegrator::trace(const Eigen::Vector3f& position, std::uint64_t probeI
       const Material& material = scene_.material(hit.instance, hit.triangle);
       if (settings_.emission && (hit.frontFace || material.doubleSided) && material.emissive())
         radiance[ray] = surfaceEmission(scene_, mesh, hit.triangle, hit.u, hit.v);
-      Vertex v;
+      Vertex& v = vertices[live];
       if (settings_.bounces > 0 && makeVertex(hit, surfaceAlbedo(scene_, mesh, hit.triangle, hit.u, hit.v), position,
                                               directions[ray], Eigen::Vector3f::Ones(), &v)) {
         v.path = ray;
         v.random = PathRandom(settings_.seed, probeId, std::uint64_t(ray));
-        vertices.push_back(v);
+        ++live;
       }
     }
   }
   // The last reflection still needs its continuation ray when emitters or the sky are
   // combined with it by MIS: the ray may find them.
   const bool lastContinuation = sampleEmitters_ || sampleEnvironment_;
-  for (int bounce = 1; bounce <= settings_.bounces && !vertices.empty(); ++bounce) {
-    addNextEvents(vertices, radiance, counts);
+  for (int bounce = 1; bounce <= settings_.bounces && live > 0; ++bounce) {
+    addNextEvents(vertices, live, scratch, radiance, counts);
     if (bounce == settings_.bounces && !lastContinuation) break;
-    continuePaths(vertices, bounce < settings_.bounces, radiance, counts);
+    live = continuePaths(vertices, live, bounce < settings_.bounces, scratch, radiance, counts);
   }
 }
 
-void PathIntegrator::addNextEvents(std::vector<Vertex>& vertices, Eigen::Vector3f* radiance,
+void PathIntegrator::addNextEvents(Vertex* vertices, int count, Scratch& scratch, Eigen::Vector3f* radiance,
                                    RayCounts* counts) const {
-  struct Pending {
-    int path;
-    Eigen::Vector3f contribution;
+  Ray* rays = nullptr;
+  Scratch::Pending* pending = nullptr;
+  int shadowRays = 0;
+  auto start = [&](std::size_t most) {
+    rays = scratch.rays.reserve(most);
+    pending = scratch.pending.reserve(most);
+    shadowRays = 0;
   };
-  thread_local std::vector<Ray> rays;
-  thread_local std::vector<Pending> pending;
-  thread_local std::unique_ptr<bool[]> blocked;
-  thread_local std::size_t blockedCapacity = 0;
-  rays.clear();
-  pending.clear();
   auto resolve = [&](std::int64_t* counter) {
-    if (rays.empty()) return;
-    if (blockedCapacity < rays.size()) {
-      blockedCapacity = 2 * rays.size();
-      blocked.reset(new bool[blockedCapacity]);
-    }
-    tracer_.occluded(rays.data(), int(rays.size()), blocked.get());
-    for (std::size_t k = 0; k < rays.size(); ++k)
+    if (shadowRays == 0) return;
+    bool* blocked = scratch.blocked.reserve(std::size_t(shadowRays));
+    tracer_.occluded(rays, shadowRays, blocked);
+    for (int k = 0; k < shadowRays; ++k)
       if (!blocked[k]) radiance[pending[k].path] += pending[k].contribution;
-    *counter += std::int64_t(rays.size());
-    rays.clear();
-    pending.clear();
+    *counter += shadowRays;
   };
 
   if (settings_.punctualLights && !scene_.lights.empty()) {
-    for (const Vertex& v : vertices) {
+    start(std::size_t(count) * scene_.lights.size());
+    for (int k = 0; k < count; ++k) {
+      const Vertex& v = vertices[k];
       const Eigen::Vector3f reflect = v.throughput.cwiseProduct(v.albedo) * kInvPi;
       for (const PunctualLight& light : scene_.lights) {
         Eigen::Vector3f toLight;
@@ -177,8 +224,8 @@ void PathIntegrator::addNextEvents(std::vector<Vertex>& vertices, Eigen::Vector3
         const float cosine = v.normal.dot(toLight);
         // A light almost on the surface can exceed single precision: dropped, as at probes.
         if (cosine <= 0.0f || !(irradiance.maxCoeff() > 0.0f) || !irradiance.allFinite()) continue;
-        rays.push_back({v.origin, toLight, 0.0f, distance});
-        pending.push_back({v.path, reflect.cwiseProduct(irradiance) * cosine});
+        rays[shadowRays] = {v.origin, toLight, 0.0f, distance};
+        pending[shadowRays++] = {v.path, reflect.cwiseProduct(irradiance) * cosine};
       }
     }
     resolve(&counts->punctualShadow);
@@ -187,50 +234,53 @@ void PathIntegrator::addNextEvents(std::vector<Vertex>& vertices, Eigen::Vector3
   if (sampleEmitters_) {
     // Every vertex's point on an emitter is drawn (and its texels prefetched) before any is
     // shaded, so that the scattered emission lookups wait for memory together.
-    struct EmitterPoint {
-      const Vertex* vertex;
-      EmitterSampler::Sample sample;
-      float xiCoverage;
-    };
-    thread_local std::vector<EmitterPoint> points;
-    points.clear();
-    for (Vertex& v : vertices) {
-      const float xiChoice = v.random.uniform(), xi1 = v.random.uniform(), xi2 = v.random.uniform();
-      const float xiCoverage = v.random.uniform();
-      const EmitterSampler::Sample s = emitters_.sample(xiChoice, xi1, xi2);
-      if (!scene_.images.empty()) prefetchSurface(scene_, scene_.instances[s.instance].mesh, s.triangle, s.u, s.v);
-      points.push_back({&v, s, xiCoverage});
+    start(std::size_t(count));
+    Scratch::EmitterPoint* points = scratch.points.reserve(std::size_t(count));
+    const bool textures = !scene_.images.empty();
+    for (int k = 0; k < count; ++k) {
+      PathRandom& random = vertices[k].random;
+      const float xiChoice = random.uniform(), xi1 = random.uniform(), xi2 = random.uniform();
+      const float xiCoverage = random.uniform();
+      points[k] = {&vertices[k], emitters_.sample(xiChoice, xi1, xi2), xiCoverage};
+      const EmitterSampler::Sample& s = points[k].sample;
+      if (textures && (s.emitter->textured || s.emitter->alphaTested))
+        prefetchSurface(scene_, s.emitter->mesh, s.emitter->triangle, s.u, s.v);
     }
-    for (const EmitterPoint& point : points) {
-      const Vertex& v = *point.vertex;
-      const EmitterSampler::Sample& s = point.sample;
-      const float xiCoverage = point.xiCoverage;
+    for (int k = 0; k < count; ++k) {
+      const Vertex& v = *points[k].vertex;
+      const EmitterSampler::Sample& s = points[k].sample;
+      const EmitterSampler::Emitter& e = *s.emitter;
       const Eigen::Vector3f d = s.point - v.origin;
-      const float distance = d.norm();
+      const float squaredDistance = d.squaredNorm(), distance = std::sqrt(squaredDistance);
       if (!(distance > 0.0f)) continue;
-      const Eigen::Vector3f toLight = d / distance;
+      const Eigen::Vector3f toLight = d * (1.0f / distance);
       const float cosine = v.normal.dot(toLight);
       if (cosine <= 0.0f) continue;
-      const float cosLight = -s.frontNormal.dot(toLight);
-      if (std::abs(cosLight) < 1e-6f || (cosLight < 0.0f && !s.doubleSided)) continue;
-      const std::uint32_t mesh = scene_.instances[s.instance].mesh;
-      if (settings_.alphaFilters && !surfaceStopsRay(scene_, mesh, s.triangle, s.u, s.v, xiCoverage))
+      const float cosLight = -e.frontNormal.dot(toLight);
+      if (std::abs(cosLight) < 1e-6f || (cosLight < 0.0f && !e.doubleSided)) continue;
+      if (settings_.alphaFilters && e.alphaTested &&
+          !surfaceStopsRay(scene_, e.mesh, e.triangle, s.u, s.v, points[k].xiCoverage))
         continue;  // a transparent texel
-      const float pdfLight = s.pdfArea * distance * distance / std::abs(cosLight);
-      const float weight = powerHeuristic(pdfLight, cosine * kInvPi);
-      const Eigen::Vector3f contribution = v.throughput.cwiseProduct(v.albedo).cwiseProduct(
-                                               surfaceEmission(scene_, mesh, s.triangle, s.u, s.v)) *
-                                           (kInvPi * cosine * weight / pdfLight);
+      // The power heuristic's weight over the light's solid-angle pdf, in one division:
+      // with pdfLight = a/c (a = pdfArea·r², c = |cosθ_light|) and the BSDF's b = cosθ/π,
+      // (pdfLight² / (pdfLight² + b²)) / pdfLight = a·c / (a² + b²·c²).
+      const float a = e.pdfArea * squaredDistance, c = std::abs(cosLight), b = cosine * kInvPi;
+      const float weightOverPdf = a * c / (a * a + b * b * c * c);
+      const Eigen::Vector3f emission = e.textured ? surfaceEmission(scene_, e.mesh, e.triangle, s.u, s.v) : e.emission;
+      const Eigen::Vector3f contribution =
+          v.throughput.cwiseProduct(v.albedo).cwiseProduct(emission) * (kInvPi * cosine * weightOverPdf);
       if (!(contribution.maxCoeff() > 0.0f) || !contribution.allFinite()) continue;
-      rays.push_back({v.origin, toLight, 0.0f, distance * (1.0f - kShadowShortening)});
-      pending.push_back({v.path, contribution});
+      rays[shadowRays] = {v.origin, toLight, 0.0f, distance * (1.0f - kShadowShortening)};
+      pending[shadowRays++] = {v.path, contribution};
     }
     resolve(&counts->emitterShadow);
   }
 
   if (sampleEnvironment_) {
     const Environment& sky = scene_.environment;
-    for (Vertex& v : vertices) {
+    start(std::size_t(count));
+    for (int k = 0; k < count; ++k) {
+      Vertex& v = vertices[k];
       const float xi1 = v.random.uniform(), xi2 = v.random.uniform();
       const Environment::Sample s = sky.sample(xi1, xi2);
       const float cosine = v.normal.dot(s.direction);
@@ -239,23 +289,22 @@ void PathIntegrator::addNextEvents(std::vector<Vertex>& vertices, Eigen::Vector3
       const Eigen::Vector3f contribution =
           v.throughput.cwiseProduct(v.albedo).cwiseProduct(s.radiance) * (kInvPi * cosine * weight / s.pdf);
       if (!(contribution.maxCoeff() > 0.0f) || !contribution.allFinite()) continue;
-      rays.push_back({v.origin, s.direction, 0.0f, std::numeric_limits<float>::infinity()});
-      pending.push_back({v.path, contribution});
+      rays[shadowRays] = {v.origin, s.direction, 0.0f, std::numeric_limits<float>::infinity()};
+      pending[shadowRays++] = {v.path, contribution};
     }
     resolve(&counts->environmentShadow);
   }
 }
 
-void PathIntegrator::continuePaths(std::vector<Vertex>& vertices, bool keepVertices, Eigen::Vector3f* radiance,
-                                   RayCounts* counts) const {
-  thread_local std::vector<Ray> rays;
-  thread_local std::vector<float> bsdfPdf;
-  rays.clear();
-  bsdfPdf.clear();
+int PathIntegrator::continuePaths(Vertex* vertices, int count, bool keepVertices, Scratch& scratch,
+                                  Eigen::Vector3f* radiance, RayCounts* counts) const {
+  Ray* rays = scratch.rays.reserve(std::size_t(count));
+  float* bsdfPdf = scratch.pdfs.reserve(std::size_t(count));
   // The paths that go on are compacted in place (vertex k traces rays[k]), and so are the
   // vertices their rays make: a vertex is written only over one already read.
-  std::size_t survivors = 0;
-  for (Vertex& v : vertices) {
+  int survivors = 0;
+  for (int k = 0; k < count; ++k) {
+    Vertex& v = vertices[k];
     const float xi1 = v.random.uniform(), xi2 = v.random.uniform();
     const Eigen::Vector3f direction = cosineDirection(v.normal, xi1, xi2);
     const float cosine = v.normal.dot(direction);
@@ -267,28 +316,33 @@ void PathIntegrator::continuePaths(std::vector<Vertex>& vertices, bool keepVerti
       if (v.random.uniform() >= survival) continue;
       v.throughput /= survival;
     }
-    rays.push_back({v.origin, direction, 0.0f, std::numeric_limits<float>::infinity()});
-    bsdfPdf.push_back(cosine * kInvPi);
-    vertices[survivors++] = v;
+    rays[survivors] = {v.origin, direction, 0.0f, std::numeric_limits<float>::infinity()};
+    bsdfPdf[survivors] = cosine * kInvPi;
+    if (survivors != k) vertices[survivors] = v;
+    ++survivors;
   }
 
   const Environment& sky = scene_.environment;
   Hit hits[8];
-  std::size_t kept = 0;
-  for (std::size_t first = 0; first < rays.size(); first += 8) {
-    const int n = int(std::min<std::size_t>(8, rays.size() - first));
-    tracer_.intersect8(rays.data() + first, n, hits);
+  int kept = 0;
+  for (int first = 0; first < survivors; first += 8) {
+    const int n = std::min(8, survivors - first);
+    tracer_.intersect8(rays + first, n, hits);
     counts->bounce += n;
     if (sampleEmitters_ || keepVertices) prefetchTextures(hits, n);
     for (int i = 0; i < n; ++i) {
-      const Vertex from = vertices[first + i];  // a copy: the next vertex may take its place
+      // What the next vertex needs of this one, copied: it may take this one's place.
+      const Vertex& from = vertices[first + i];
+      const Eigen::Vector3f throughput = from.throughput;
+      const int path = from.path;
+      const PathRandom random = from.random;
       const Ray& ray = rays[first + i];
       const float pdf = bsdfPdf[first + i];
       const Hit& hit = hits[i];
       if (hit.missed()) {
         if (sampleEnvironment_) {
           const float weight = powerHeuristic(pdf, sky.pdf(ray.direction));
-          radiance[from.path] += from.throughput.cwiseProduct(sky.radiance(ray.direction)) * weight;
+          radiance[path] += throughput.cwiseProduct(sky.radiance(ray.direction)) * weight;
         }
         continue;
       }
@@ -302,19 +356,19 @@ void PathIntegrator::continuePaths(std::vector<Vertex>& vertices, bool keepVerti
           const float pdfLight =
               cosLight > 0.0f ? emitters_.pdfArea(hit.instance, hit.triangle) * hit.distance * hit.distance / cosLight
                               : 0.0f;
-          radiance[from.path] += from.throughput.cwiseProduct(emission) * powerHeuristic(pdf, pdfLight);
+          radiance[path] += throughput.cwiseProduct(emission) * powerHeuristic(pdf, pdfLight);
         }
       }
       Vertex& next = vertices[kept];
       if (keepVertices && makeVertex(hit, surfaceAlbedo(scene_, mesh, hit.triangle, hit.u, hit.v), ray.origin,
-                                     ray.direction, from.throughput, &next)) {
-        next.path = from.path;
-        next.random = from.random;
+                                     ray.direction, throughput, &next)) {
+        next.path = path;
+        next.random = random;
         ++kept;
       }
     }
   }
-  vertices.resize(kept);
+  return kept;
 }
 
 }  // namespace baker

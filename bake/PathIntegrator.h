@@ -38,9 +38,12 @@ class PathIntegrator {
 
  private:
   struct Vertex;
-  void addNextEvents(std::vector<Vertex>& vertices, Eigen::Vector3f* radiance, RayCounts* counts) const;
-  void continuePaths(std::vector<Vertex>& vertices, bool keepVertices, Eigen::Vector3f* radiance,
+  struct Scratch;
+  void addNextEvents(Vertex* vertices, int count, Scratch& scratch, Eigen::Vector3f* radiance,
                      RayCounts* counts) const;
+  // Returns how many vertices the continued paths made (in place of the old ones).
+  int continuePaths(Vertex* vertices, int count, bool keepVertices, Scratch& scratch, Eigen::Vector3f* radiance,
+                    RayCounts* counts) const;
   // Texture lookups at scattered hits miss the cache: a packet's are announced before any is
   // shaded, so that their latencies overlap. Nothing to do in a scene without textures.
   void prefetchTextures(const Hit* hits, int count) const;

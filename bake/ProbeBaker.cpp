@@ -113,14 +113,19 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return tasks[a].rotation < tasks[b].rotation; });
 
-  Eigen::MatrixXf columns(rays, 4 * p);
+  // Kept from brick to brick on each thread: a brick's samples are megabytes, and memory freshly
+  // mapped for each brick costs the kernel a page clearing per 4 KiB.
+  thread_local Eigen::MatrixXf columns;
+  columns.resize(rays, 4 * p);
   const bool punctualAtProbe = settings_.transport.directPunctual && !punctual_.empty();
   Eigen::MatrixXd punctualSh;
   const int shCount = punctual_.shCount();
   if (punctualAtProbe) punctualSh.setZero(shCount, 3 * p);
   bool anyPunctual = false;
-  std::vector<Eigen::Vector3f> radiance(rays);
-  std::vector<float> sky(rays);
+  thread_local std::vector<Eigen::Vector3f> radiance;
+  thread_local std::vector<float> sky;
+  radiance.resize(rays);
+  sky.resize(rays);
 
   struct Block {
     int rotation, first, count;
