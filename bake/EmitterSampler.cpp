@@ -42,8 +42,17 @@ EmitterSampler::EmitterSampler(const Scene& scene) : scene_(scene) {
 }
 
 EmitterSampler::Sample EmitterSampler::sample(float xiChoice, float xi1, float xi2) const {
-  const auto it = std::upper_bound(cumulative_.begin(), cumulative_.end(), double(xiChoice));
-  const Emitter& e = emitters_[std::min<std::size_t>(it - cumulative_.begin(), emitters_.size() - 1)];
+  // std::upper_bound without branches: its comparisons go either way at random, and each
+  // mispredicted one costs more than the comparison.
+  const double x = xiChoice;
+  const double* first = cumulative_.data();
+  for (std::size_t length = cumulative_.size(); length > 1;) {
+    const std::size_t half = length / 2;
+    first += (first[half - 1] <= x) ? half : 0;
+    length -= half;
+  }
+  const std::size_t index = std::size_t(first - cumulative_.data()) + (*first <= x ? 1 : 0);
+  const Emitter& e = emitters_[std::min(index, emitters_.size() - 1)];
   // Uniform on the triangle: the square-root warp of the unit square.
   const float s = std::sqrt(xi1);
   const float u = s * (1.0f - xi2), v = s * xi2;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 
 namespace baker {
@@ -17,12 +18,20 @@ const std::array<float, 256>& srgbTable() {
   return table;
 }
 
+// std::floor without the library call (this build targets baseline x86-64, which has no
+// rounding instruction); exact wherever a double still has a fractional part.
+double floorOf(double t) {
+  if (!(std::abs(t) < 4503599627370496.0)) return std::floor(t);  // 2^52: already whole (or NaN)
+  const double whole = double(std::int64_t(t));
+  return whole > t ? whole - 1.0 : whole;
+}
+
 // Brings a texture coordinate into one period (or onto the edge for clamping) before it is
 // scaled to texels, so that huge or negative coordinates cannot overflow a texel index.
 double reduce(double t, Wrap wrap) {
   switch (wrap) {
-    case Wrap::Repeat: return t - std::floor(t);
-    case Wrap::MirroredRepeat: return t - 2.0 * std::floor(t / 2.0);
+    case Wrap::Repeat: return t - floorOf(t);
+    case Wrap::MirroredRepeat: return t - 2.0 * floorOf(t / 2.0);
     case Wrap::ClampToEdge: break;
   }
   return std::clamp(t, 0.0, 1.0);
@@ -31,14 +40,16 @@ double reduce(double t, Wrap wrap) {
 // The texel a (possibly out-of-range) index reads under `wrap`; the reduced coordinate keeps
 // the index within one neighbour of a single (mirrored: double) period.
 int wrapIndex(int i, int n, Wrap wrap) {
+  // One step of a period instead of a remainder: an integer division costs more than the rest
+  // of a texture lookup.
   switch (wrap) {
     case Wrap::Repeat: {
-      const int m = i % n;
-      return m < 0 ? m + n : m;
+      const int m = i < 0 ? i + n : i >= n ? i - n : i;
+      return m >= 0 && m < n ? m : ((i % n) + n) % n;
     }
     case Wrap::MirroredRepeat: {
-      int m = i % (2 * n);
-      if (m < 0) m += 2 * n;
+      int m = i < 0 ? i + 2 * n : i >= 2 * n ? i - 2 * n : i;
+      if (m < 0 || m >= 2 * n) m = ((i % (2 * n)) + 2 * n) % (2 * n);
       return m < n ? m : 2 * n - 1 - m;
     }
     case Wrap::ClampToEdge: break;
@@ -86,13 +97,13 @@ ColorImage::Footprint ColorImage::footprint(const Eigen::Vector2f& uv, const Sam
   const double t = reduce(std::isfinite(uv.y()) ? uv.y() : 0.0, sampler.wrapT) * height_;
   Footprint f;
   if (sampler.nearest) {
-    f.x0 = f.x1 = wrapIndex(int(std::floor(s)), width_, sampler.wrapS);
-    f.y0 = f.y1 = wrapIndex(int(std::floor(t)), height_, sampler.wrapT);
+    f.x0 = f.x1 = wrapIndex(int(floorOf(s)), width_, sampler.wrapS);
+    f.y0 = f.y1 = wrapIndex(int(floorOf(t)), height_, sampler.wrapT);
     return f;
   }
   // Texel centres sit at half-integer positions, so bilinear weights come from s − ½.
   const double px = s - 0.5, py = t - 0.5;
-  const double fx0 = std::floor(px), fy0 = std::floor(py);
+  const double fx0 = floorOf(px), fy0 = floorOf(py);
   f.ax = float(px - fx0);
   f.ay = float(py - fy0);
   f.x0 = wrapIndex(int(fx0), width_, sampler.wrapS);
