@@ -23,7 +23,7 @@ EmitterSampler::EmitterSampler(const Scene& scene) : scene_(scene) {
       const float area = 0.5f * e1.cross(e2).norm();
       const double power = double(area) * luminance(material.emission) * (material.doubleSided ? 2.0 : 1.0);
       if (!(area > 0.0f) || !(power > 0.0)) continue;
-      emitters_.push_back({scene.globalTriangle(i, t), i, t, instance.mesh, p0, e1, e2, scene.frontNormal(i, t),
+      emitters_.push_back({scene.globalTriangle(i, t), t, instance.mesh, p0, e1, e2, scene.frontNormal(i, t),
                            material.emission, area, float(power), material.doubleSided,
                            material.emissiveTexture.present(), material.alphaTested()});
       total += power;

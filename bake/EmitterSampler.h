@@ -22,7 +22,7 @@ class EmitterSampler {
   // scene's instance, mesh and material tables at every sample.
   struct Emitter {
     std::uint64_t globalTriangle;
-    std::uint32_t instance, triangle, mesh;
+    std::uint32_t triangle, mesh;
     Eigen::Vector3f p0, e1, e2;     // world corner and edges
     Eigen::Vector3f frontNormal;    // unit, world space (Scene::frontNormal)
     Eigen::Vector3f emission;       // the material's, which a texture may vary (`textured`)

@@ -30,8 +30,8 @@ typename GridType::Ptr sparseGrid(const Volume& v, const std::vector<bool>& stor
   for (int bk = 0; bk < bricks.z(); ++bk)
     for (int bj = 0; bj < bricks.y(); ++bj)
       for (int bi = 0; bi < bricks.x(); ++bi) {
-        if (!stored[bi + std::int64_t(bricks.x()) * (bj + std::int64_t(bricks.y()) * bk)]) continue;
         const openvdb::Coord origin(bi * kBrickSize, bj * kBrickSize, bk * kBrickSize);
+        if (!stored[brickOf(g, origin.x(), origin.y(), origin.z())]) continue;
         auto leaf = std::make_unique<LeafType>(origin, typename GridType::ValueType(0), false);
         for (int k = origin.z(); k < std::min(origin.z() + kBrickSize, g.dims.z()); ++k)
           for (int j = origin.y(); j < std::min(origin.y() + kBrickSize, g.dims.y()); ++j)
