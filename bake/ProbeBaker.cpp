@@ -9,6 +9,7 @@
 #include "bake/DirectionSet.h"
 #include "bake/NonNegativeProjection.h"
 #include "bake/PathRandom.h"
+#include "bake/ScratchBuffer.h"
 
 namespace baker {
 namespace {
@@ -54,7 +55,9 @@ struct ProbeBaker::ChannelGroup {
   int firstChannel = 0;
   int channelCount = 0;
   int functions = 0;
-  std::vector<Eigen::MatrixXf> fromSamples;  // per rotation: functions × rays, radiance → irradiance
+  // Per rotation: functions × rays, radiance → irradiance. Row-major, so that each coefficient
+  // is one contiguous dot product with a probe's contiguous samples.
+  std::vector<Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> fromSamples;
   Eigen::MatrixXd fromPunctualSh;            // functions × PunctualAtProbe::shCount()
   Eigen::MatrixXd gram;                      // for the non-negative solve
 };
@@ -113,10 +116,10 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return tasks[a].rotation < tasks[b].rotation; });
 
-  // Kept from brick to brick on each thread: a brick's samples are megabytes, and memory freshly
-  // mapped for each brick costs the kernel a page clearing per 4 KiB.
-  thread_local Eigen::MatrixXf columns;
-  columns.resize(rays, 4 * p);
+  // Kept from brick to brick on each thread, and only ever grown: a brick's samples are
+  // megabytes, and memory freshly mapped for each brick costs the kernel a page clearing per 4 KiB.
+  thread_local ScratchBuffer<float> sampleStore;
+  Eigen::Map<Eigen::MatrixXf> columns(sampleStore.reserve(std::size_t(rays) * 4 * std::size_t(p)), rays, 4 * p);
   const bool punctualAtProbe = settings_.transport.directPunctual && !punctual_.empty();
   Eigen::MatrixXd punctualSh;
   const int shCount = punctual_.shCount();
@@ -173,26 +176,30 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
     }
   }
 
+  // Each coefficient is a dot product of an operator row with a probe's samples, written straight
+  // to the output: the brick's operator-times-samples product, coefficient by coefficient. Eigen's
+  // general product cost two and a half times as much here, most of it repacking these short,
+  // wide sample blocks on every call.
   const auto projectionStart = std::chrono::steady_clock::now();
   for (const Block& block : blocks) {
     const int base = 4 * block.first;
     for (const ChannelGroup& group : groups_) {
-      const Eigen::MatrixXf result = group.fromSamples[block.rotation] *
-                                     columns.middleCols(base + group.firstChannel * block.count,
-                                                        group.channelCount * block.count);
+      const auto& fromSamples = group.fromSamples[block.rotation];
       for (int c = 0; c < group.channelCount; ++c) {
-        const int offset = basis_.coefficientOffset(group.firstChannel + c);
+        const int channel = group.firstChannel + c;
+        const int offset = basis_.coefficientOffset(channel);
         for (int within = 0; within < block.count; ++within) {
+          const auto samples = columns.col(base + channel * block.count + within);
           float* out = coefficients + std::size_t(order[block.first + within]) * coefficientsPerProbe_ + offset;
-          for (int f = 0; f < group.functions; ++f) out[f] = result(f, c * block.count + within);
+          for (int f = 0; f < group.functions; ++f) out[f] = fromSamples.row(f).dot(samples);
         }
       }
     }
-    const Eigen::MatrixXf sight = groups_[0].fromSamples[block.rotation] *
-                                  columns.middleCols(base + 3 * block.count, block.count) * float(1.0 / M_PI);
+    const auto& fromSky = groups_[0].fromSamples[block.rotation];
     for (int within = 0; within < block.count; ++within) {
+      const auto samples = columns.col(base + 3 * block.count + within);
       float* out = visibility + std::size_t(order[block.first + within]) * visibilityPerProbe_;
-      for (int f = 0; f < visibilityPerProbe_; ++f) out[f] = sight(f, within);
+      for (int f = 0; f < visibilityPerProbe_; ++f) out[f] = fromSky.row(f).dot(samples) * float(1.0 / M_PI);
     }
   }
 
