@@ -116,8 +116,7 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return tasks[a].rotation < tasks[b].rotation; });
 
-  // Kept from brick to brick on each thread, and only ever grown: a brick's samples are
-  // megabytes, and memory freshly mapped for each brick costs the kernel a page clearing per 4 KiB.
+  // Kept from brick to brick on each thread: a brick's samples are megabytes.
   thread_local ScratchBuffer<float> sampleStore;
   Eigen::Map<Eigen::MatrixXf> columns(sampleStore.reserve(std::size_t(rays) * 4 * std::size_t(p)), rays, 4 * p);
   const bool punctualAtProbe = settings_.transport.directPunctual && !punctual_.empty();
@@ -180,6 +179,10 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
   // to the output: the brick's operator-times-samples product, coefficient by coefficient. Eigen's
   // general product cost two and a half times as much here, most of it repacking these short,
   // wide sample blocks on every call.
+  auto project = [&](const auto& fromSamples, int column, int functions, float scale, float* out) {
+    const auto samples = columns.col(column);
+    for (int f = 0; f < functions; ++f) out[f] = fromSamples.row(f).dot(samples) * scale;
+  };
   const auto projectionStart = std::chrono::steady_clock::now();
   for (const Block& block : blocks) {
     const int base = 4 * block.first;
@@ -188,19 +191,14 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
       for (int c = 0; c < group.channelCount; ++c) {
         const int channel = group.firstChannel + c;
         const int offset = basis_.coefficientOffset(channel);
-        for (int within = 0; within < block.count; ++within) {
-          const auto samples = columns.col(base + channel * block.count + within);
-          float* out = coefficients + std::size_t(order[block.first + within]) * coefficientsPerProbe_ + offset;
-          for (int f = 0; f < group.functions; ++f) out[f] = fromSamples.row(f).dot(samples);
-        }
+        for (int within = 0; within < block.count; ++within)
+          project(fromSamples, base + channel * block.count + within, group.functions, 1.0f,
+                  coefficients + std::size_t(order[block.first + within]) * coefficientsPerProbe_ + offset);
       }
     }
-    const auto& fromSky = groups_[0].fromSamples[block.rotation];
-    for (int within = 0; within < block.count; ++within) {
-      const auto samples = columns.col(base + 3 * block.count + within);
-      float* out = visibility + std::size_t(order[block.first + within]) * visibilityPerProbe_;
-      for (int f = 0; f < visibilityPerProbe_; ++f) out[f] = fromSky.row(f).dot(samples) * float(1.0 / M_PI);
-    }
+    for (int within = 0; within < block.count; ++within)
+      project(groups_[0].fromSamples[block.rotation], base + 3 * block.count + within, visibilityPerProbe_,
+              float(1.0 / M_PI), visibility + std::size_t(order[block.first + within]) * visibilityPerProbe_);
   }
 
   if (anyPunctual) {

@@ -5,9 +5,10 @@
 
 namespace baker {
 
-// An array that only grows and is never cleared: per-thread scratch space for the short
-// wavefronts a bake traces by the million, where a std::vector's initialisation and per-element
-// capacity checks cost as much as the work on the elements.
+// An array that only grows and is never cleared: per-thread scratch space, such as the short
+// wavefronts a bake traces by the million (where a std::vector's initialisation and per-element
+// capacity checks cost as much as the work on the elements) and a brick's sample matrix (where
+// memory mapped afresh for each brick costs a page clearing per 4 KiB).
 template <typename T>
 class ScratchBuffer {
  public:
