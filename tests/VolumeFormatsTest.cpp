@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -7,12 +8,14 @@
 #include <nlohmann/json.hpp>
 #include <openvdb/openvdb.h>
 #include <random>
+#include <sstream>
 
 #include "bake/BasisRegistry.h"
 #include "common/Error.h"
 #include "formats/ExrSlices.h"
 #include "formats/VdbChecksum.h"
 #include "formats/VdbWriter.h"
+#include "formats/VolumeLayout.h"
 #include "formats/VolumeReader.h"
 #include "formats/VolumeSampler.h"
 #include "tests/GltfTestAssets.h"
@@ -255,6 +258,46 @@ TEST(VolumeFormats, StandardToolsReadTheFiles) {
   EXPECT_NE(vdb.str().find("baker.basis"), std::string::npos);
   EXPECT_NE(exr.str().find("Co_11"), std::string::npos) << exr.str();
   EXPECT_NE(exr.str().find("baker.basis"), std::string::npos);
+}
+
+// The writer builds and writes one grid at a time through OpenVDB's Archive, to reuse memory.
+// Its file must be byte for byte the one OpenVDB's own all-at-once writer makes from the same
+// grids and metadata, apart from the UUID every OpenVDB file carries.
+TEST(VolumeFormats, VdbWrittenGridByGridIsWhatOpenVdbWrites) {
+  const std::string dir = test::makeTempDir("formats_grid_by_grid");
+  const auto basis = makeBasis("sh-l2");
+  writeVdb(randomVolume(*basis, 13, {17, 9, 8}), *basis, dir + "/ours.vdb");
+  openvdb::initialize();
+  openvdb::io::File ours(dir + "/ours.vdb");
+  ours.open(/*delayLoad=*/false);
+  const openvdb::MetaMap::Ptr metadata = ours.getMetadata();
+  const std::string ourUuid = ours.getUniqueTag();
+  // In the file's order, which is the layout's (getGrids would sort them by name).
+  openvdb::GridPtrVec grids;
+  for (const VolumeGrid& spec : volumeGrids(*basis, basis->functions(0).count(), true))
+    grids.push_back(ours.readGrid(spec.name));
+  ours.close();
+  ASSERT_EQ(grids.size(), 20u);
+  openvdb::io::File(dir + "/theirs.vdb").write(grids, *metadata);
+
+  const auto bytesWithoutUuid = [](const std::string& path, const std::string& uuid) {
+    std::stringstream bytes;
+    bytes << std::ifstream(path, std::ios::binary).rdbuf();
+    std::string s = bytes.str();
+    const std::size_t at = s.find(uuid);
+    EXPECT_NE(at, std::string::npos) << path << " does not hold its UUID " << uuid;
+    if (at != std::string::npos) s.replace(at, uuid.size(), uuid.size(), '-');
+    return s;
+  };
+  openvdb::io::File reopened(dir + "/theirs.vdb");
+  reopened.open(false);
+  const std::string theirUuid = reopened.getUniqueTag();
+  reopened.close();
+  const std::string a = bytesWithoutUuid(dir + "/ours.vdb", ourUuid);
+  const std::string b = bytesWithoutUuid(dir + "/theirs.vdb", theirUuid);
+  ASSERT_EQ(a.size(), b.size());
+  EXPECT_TRUE(a == b) << "first difference at byte "
+                      << std::distance(a.begin(), std::mismatch(a.begin(), a.end(), b.begin()).first);
 }
 
 // A bake written as EXR slices, then `inspect` and `sample` on it, as a user would.
