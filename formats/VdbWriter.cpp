@@ -7,10 +7,12 @@
 #include <openvdb/openvdb.h>
 
 #include <algorithm>
-#include <cmath>
+#include <cerrno>
 #include <cstdint>
+#include <cstring>
 #include <fstream>
 #include <memory>
+#include <string>
 
 #include "bake/Baker.h"
 #include "formats/AtomicFile.h"
@@ -59,16 +61,22 @@ openvdb::MetaMap fileMetadata(const Volume& v, const Basis& basis) {
   return meta;
 }
 
+// Why the last file operation failed, as far as the C library says.
+std::string failureReason() { return errno != 0 ? std::strerror(errno) : "the output stream failed"; }
+
 // OpenVDB's public writer takes every grid at once, so all of a volume's grids (20 for sh-l2)
 // would be alive together, each with its own 32³ and 16³ internal nodes: about 8 MB touched
 // for the first time, which costs more than the rest of the write on a small volume. Writing
 // one grid at a time lets each grid's freed nodes serve the next. Archive's protected members
-// write the same header and grid records as File::write, so any OpenVDB reader reads the file.
+// write the same header and grid records as File::write, given what holds for our grids: none
+// is null, their names are unique and not empty (so File::write would rename none), and none
+// shares its tree with another (so none would be written as an instance).
 class GridByGridArchive : public openvdb::io::Archive {
  public:
   // `gridAt(i)` builds grid i; it is written, then released before grid i + 1 is built.
   template <typename GridAt>
-  void writeGrids(std::ostream& os, const openvdb::MetaMap& metadata, std::int32_t gridCount, GridAt gridAt) const {
+  void writeGrids(std::ostream& os, const std::string& path, const openvdb::MetaMap& metadata, std::int32_t gridCount,
+                  GridAt gridAt) const {
     auto streamMetadata = std::make_shared<openvdb::io::StreamMetadata>();
     openvdb::io::setStreamMetadataPtr(os, streamMetadata, /*transfer=*/false);
     openvdb::io::setDataCompression(os, compression());
@@ -80,8 +88,9 @@ class GridByGridArchive : public openvdb::io::Archive {
       const openvdb::GridBase::ConstPtr grid = gridAt(index);
       openvdb::io::GridDescriptor descriptor(grid->getName(), grid->type(), grid->saveFloatAsHalf());
       writeGrid(descriptor, grid, os, /*seekable=*/true);
-      // Mask compression is chosen per grid; the next grid starts from the file's settings.
+      // As File::write does after each grid (writeGrid may change the flags for some grid classes).
       openvdb::io::setDataCompression(os, compression());
+      if (!os) throw std::runtime_error(fmt::format("{}: cannot write OpenVDB file: {}", path, failureReason()));
     }
     openvdb::io::clearStreamMetadataPtr(os);
   }
@@ -115,11 +124,13 @@ void writeVdb(const Volume& volume, const Basis& basis, const std::string& path)
 
   AtomicFile out(path);
   try {
+    errno = 0;
     std::ofstream file(out.temporaryPath(), std::ios::binary | std::ios::trunc);
-    if (!file) throw std::runtime_error(fmt::format("{}: cannot create '{}'", path, out.temporaryPath()));
-    GridByGridArchive().writeGrids(file, fileMetadata(volume, basis), std::int32_t(specs.size()), gridAt);
+    if (!file)
+      throw std::runtime_error(fmt::format("{}: cannot create '{}': {}", path, out.temporaryPath(), failureReason()));
+    GridByGridArchive().writeGrids(file, path, fileMetadata(volume, basis), std::int32_t(specs.size()), gridAt);
     file.close();
-    if (!file) throw std::runtime_error(fmt::format("{}: cannot write OpenVDB file (is the disk full?)", path));
+    if (!file) throw std::runtime_error(fmt::format("{}: cannot write OpenVDB file: {}", path, failureReason()));
     sealVdbChecksum(out.temporaryPath());
   } catch (const openvdb::Exception& e) {
     throw std::runtime_error(fmt::format("{}: cannot write OpenVDB file: {}", path, e.what()));
