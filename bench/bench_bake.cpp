@@ -15,6 +15,7 @@
 //    eight probes, against 2^19 Fibonacci rays) with the spherical Fibonacci set against
 //    independent uniformly random directions.
 // Default scene: the project's data/default_room.
+#include <fmt/format.h>
 #include <tbb/global_control.h>
 
 #include <chrono>
@@ -33,6 +34,8 @@
 #include "bake/BasisRegistry.h"
 #include "bake/PathIntegrator.h"
 #include "bake/ProbeBaker.h"
+#include "cli/CommandLine.h"
+#include "common/Error.h"
 #include "common/Timing.h"
 #include "formats/VolumeWriter.h"
 #include "scene/GltfLoader.h"
@@ -134,8 +137,9 @@ nlohmann::json run(const Options& o) {
   // writing its volume, Embree alone replaying its rays, and a two-thread bake. Each is timed at
   // its best round: on a shared machine noise only ever adds time, and interleaving them keeps a
   // slow spell from favouring one of them. The write follows the bake directly, as in `baker`,
-  // and meets the heap the bake leaves: timed after the replay instead, the same write measured
-  // 45–91 ms on default_room against 115–163 ms here, which `baker --threads 1` reports as well.
+  // and meets the heap the bake leaves: timed after the replay instead, the writer that built
+  // every grid at once measured 45–91 ms on default_room against 115–163 ms here (as `baker
+  // --threads 1` reported too), because the replay had already touched memory it could reuse.
   constexpr int kRounds = 5;
   BakeStats stats, twoStats;
   double replay = std::numeric_limits<double>::infinity();
@@ -309,32 +313,33 @@ nlohmann::json run(const Options& o) {
 
 int main(int argc, char** argv) {
   baker::Options o;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto next = [&]() -> std::string {
-      if (i + 1 >= argc) throw std::runtime_error(a + " needs a value");
-      return argv[++i];
-    };
-    if (a == "--rays") o.rays = std::stoi(next());
-    else if (a == "--basis") o.basis = next();
-    else if (a == "--spacing") o.spacing = std::stod(next());
-    else if (a == "--baker") o.baker = next();
-    else if (a == "--json") o.json = true;
-    else o.scene = a;
-  }
-  const nlohmann::json result = baker::run(o);
-  if (o.json) {
-    std::cout << result.dump(2) << "\n";
+  CLI::App app{"The bake's cost as ratios within one run: throughput against Embree alone, stages, thread "
+               "and probe scaling, peak memory, sampling efficiency."};
+  app.add_option("scene", o.scene, "glTF scene (default: data/default_room)")->check(CLI::ExistingFile);
+  app.add_option("--rays", o.rays,
+                 "rays per probe (the replay keeps every ray of a bake: about 130 MB at 256 on default_room)");
+  app.add_option("--basis", o.basis, "basis (`baker bases` lists them)");
+  app.add_option("--spacing", o.spacing, "probe spacing in scene units (default: the bake's own)");
+  app.add_option("--baker", o.baker, "baker binary run for the peak-memory figures")->check(CLI::ExistingFile);
+  app.add_flag("--json", o.json, "print the results as JSON");
+  return baker::runGuarded("bench_bake", app, argc, argv, [&] {
+    if (o.rays <= 0) throw baker::InputError(fmt::format("--rays must be positive, got {}", o.rays));
+    if (!(o.spacing >= 0.0) || !std::isfinite(o.spacing))
+      throw baker::InputError(fmt::format("--spacing must be positive (or 0 for the bake's own), got {}", o.spacing));
+    const nlohmann::json result = baker::run(o);
+    if (o.json) {
+      std::cout << result.dump(2) << "\n";
+      return 0;
+    }
+    std::cout << "throughput: bake " << result["throughput"]["bake_mrays_per_second"] << " Mrays/s, trace-only "
+              << result["throughput"]["trace_only_mrays_per_second"] << " Mrays/s, ratio "
+              << result["throughput"]["ratio"] << " (target 0.85)\n";
+    std::cout << "stages (s): " << result["stages_seconds"].dump() << "; projection + operators + write "
+              << result["projection_and_write_fraction"] << " of the bake (target 0.05)\n";
+    std::cout << "threads: 2 vs 1 speedup " << result["threads"]["speedup"] << " (target 1.9)\n";
+    std::cout << "cost against probes: " << result["cost_against_probes"].dump() << "\n";
+    std::cout << "peak memory: " << result["peak_memory_against_probes"].dump() << "\n";
+    std::cout << "sampling: " << result["sampling_efficiency"].dump() << "\n";
     return 0;
-  }
-  std::cout << "throughput: bake " << result["throughput"]["bake_mrays_per_second"] << " Mrays/s, trace-only "
-            << result["throughput"]["trace_only_mrays_per_second"] << " Mrays/s, ratio " << result["throughput"]["ratio"]
-            << " (target 0.85)\n";
-  std::cout << "stages (s): " << result["stages_seconds"].dump() << "; projection + operators + write "
-            << result["projection_and_write_fraction"] << " of the bake (target 0.05)\n";
-  std::cout << "threads: 2 vs 1 speedup " << result["threads"]["speedup"] << " (target 1.9)\n";
-  std::cout << "cost against probes: " << result["cost_against_probes"].dump() << "\n";
-  std::cout << "peak memory: " << result["peak_memory_against_probes"].dump() << "\n";
-  std::cout << "sampling: " << result["sampling_efficiency"].dump() << "\n";
-  return 0;
+  });
 }

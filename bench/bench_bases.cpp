@@ -6,13 +6,13 @@
 #include <fmt/format.h>
 
 #include <chrono>
-#include <cstring>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <random>
 
 #include "bake/BasisRegistry.h"
 #include "bake/GramOperators.h"
+#include "cli/CommandLine.h"
 
 using namespace baker;
 
@@ -53,43 +53,47 @@ double nsPerDirection(const Basis& basis, const std::vector<float>& coefficients
 }  // namespace
 
 int main(int argc, char** argv) {
-  const bool json = argc > 1 && std::strcmp(argv[1], "--json") == 0;
-  std::mt19937 rng(42);
-  std::normal_distribution<double> normal;
-  std::vector<Eigen::Vector3d> directions(200000);
-  for (Eigen::Vector3d& d : directions) d = Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
+  bool json = false;
+  CLI::App app{"Per basis: reconstruction cost (fast against dense) and the time to build its operators."};
+  app.add_flag("--json", json, "print the results as JSON");
+  return runGuarded("bench_bases", app, argc, argv, [&] {
+    std::mt19937 rng(42);
+    std::normal_distribution<double> normal;
+    std::vector<Eigen::Vector3d> directions(200000);
+    for (Eigen::Vector3d& d : directions) d = Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
 
-  nlohmann::json rows = nlohmann::json::array();
-  if (!json)
-    std::cout << fmt::format("{:<14} {:>6} {:>5} {:>10} {:>10} {:>8} {:>10} {:>12}\n", "basis", "stored", "read",
-                             "fast ns", "dense ns", "dense/fast", "gram ms", "irradiance ms");
-  for (const std::string& name : basisNames()) {
-    const auto basis = makeBasis(name);
-    std::vector<float> coefficients(basis->totalCoefficients());
-    for (float& c : coefficients) c = float(normal(rng));
-    const double fast = nsPerDirection(*basis, coefficients, directions);
-    const double dense = nsPerDirection(DenseView(*basis), coefficients, directions);
-    auto start = std::chrono::steady_clock::now();
-    const GramOperators ops(basis->functions(0), name);
-    const double gramMs = seconds(start) * 1e3;
-    start = std::chrono::steady_clock::now();
-    int order = 0;
-    ops.radianceToIrradiance({}, &order);
-    const double irradianceMs = seconds(start) * 1e3;
-    rows.push_back({{"basis", name},
-                    {"coefficients_stored", basis->totalCoefficients()},
-                    {"coefficients_per_lookup", basis->coefficientsPerLookup()},
-                    {"reconstruct_ns_per_direction", fast},
-                    {"dense_ns_per_direction", dense},
-                    {"dense_over_fast", dense / fast},
-                    {"gram_build_ms", gramMs},
-                    {"irradiance_operator_build_ms", irradianceMs},
-                    {"irradiance_operator_sh_order", order}});
+    nlohmann::json rows = nlohmann::json::array();
     if (!json)
-      std::cout << fmt::format("{:<14} {:>6} {:>5} {:>10.1f} {:>10.1f} {:>8.2f} {:>10.1f} {:>12.1f}\n", name,
-                               basis->totalCoefficients(), basis->coefficientsPerLookup(), fast, dense, dense / fast,
-                               gramMs, irradianceMs);
-  }
-  if (json) std::cout << nlohmann::json{{"bases", rows}}.dump(2) << "\n";
-  return 0;
+      std::cout << fmt::format("{:<14} {:>6} {:>5} {:>10} {:>10} {:>8} {:>10} {:>12}\n", "basis", "stored", "read",
+                               "fast ns", "dense ns", "dense/fast", "gram ms", "irradiance ms");
+    for (const std::string& name : basisNames()) {
+      const auto basis = makeBasis(name);
+      std::vector<float> coefficients(basis->totalCoefficients());
+      for (float& c : coefficients) c = float(normal(rng));
+      const double fast = nsPerDirection(*basis, coefficients, directions);
+      const double dense = nsPerDirection(DenseView(*basis), coefficients, directions);
+      auto start = std::chrono::steady_clock::now();
+      const GramOperators ops(basis->functions(0), name);
+      const double gramMs = seconds(start) * 1e3;
+      start = std::chrono::steady_clock::now();
+      int order = 0;
+      ops.radianceToIrradiance({}, &order);
+      const double irradianceMs = seconds(start) * 1e3;
+      rows.push_back({{"basis", name},
+                      {"coefficients_stored", basis->totalCoefficients()},
+                      {"coefficients_per_lookup", basis->coefficientsPerLookup()},
+                      {"reconstruct_ns_per_direction", fast},
+                      {"dense_ns_per_direction", dense},
+                      {"dense_over_fast", dense / fast},
+                      {"gram_build_ms", gramMs},
+                      {"irradiance_operator_build_ms", irradianceMs},
+                      {"irradiance_operator_sh_order", order}});
+      if (!json)
+        std::cout << fmt::format("{:<14} {:>6} {:>5} {:>10.1f} {:>10.1f} {:>8.2f} {:>10.1f} {:>12.1f}\n", name,
+                                 basis->totalCoefficients(), basis->coefficientsPerLookup(), fast, dense, dense / fast,
+                                 gramMs, irradianceMs);
+    }
+    if (json) std::cout << nlohmann::json{{"bases", rows}}.dump(2) << "\n";
+    return 0;
+  });
 }

@@ -1,6 +1,6 @@
 // Scene loading and BVH build: time, triangles per second and peak memory.
 //
-//   bench_scene [SCENE.gltf|.glb] [--grid N] [--instances K]
+//   bench_scene [SCENE.gltf|.glb] [--grid N] [--instances K] [--json]
 //
 // Without a scene it generates one: a wavy grid of N × N quads (2N² triangles, default N = 1024)
 // placed by K nodes (default 1; K > 1 exercises instancing), written as .gltf + .bin in a
@@ -9,9 +9,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <fmt/format.h>
+
 #include <chrono>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -19,6 +20,8 @@
 #include <string>
 #include <vector>
 
+#include "cli/CommandLine.h"
+#include "common/Error.h"
 #include "scene/GltfLoader.h"
 #include "scene/RayTracer.h"
 
@@ -83,54 +86,72 @@ void writeGrid(const std::string& dir, int n, int instances) {
 int main(int argc, char** argv) {
   std::string scene;
   int grid = 1024, instances = 1;
-  for (int a = 1; a < argc; ++a) {
-    if (!std::strcmp(argv[a], "--grid") && a + 1 < argc) grid = std::atoi(argv[++a]);
-    else if (!std::strcmp(argv[a], "--instances") && a + 1 < argc) instances = std::atoi(argv[++a]);
-    else scene = argv[a];
-  }
-  if (grid <= 0 || instances <= 0) {
-    std::cerr << "bench_scene: --grid and --instances must be positive\n";
-    return 2;
-  }
-  std::filesystem::path generated;
-  if (scene.empty()) {
-    generated = std::filesystem::temp_directory_path() / ("bench-scene-" + std::to_string(getpid()));
-    std::filesystem::create_directories(generated);
-    const pid_t child = fork();
-    if (child == 0) {
-      writeGrid(generated.string(), grid, instances);
-      _exit(0);
+  bool json = false;
+  CLI::App app{"Scene loading and BVH build: time, triangles per second and peak memory."};
+  app.add_option("scene", scene, "glTF scene (default: a generated wavy grid)")->check(CLI::ExistingFile);
+  app.add_option("--grid", grid, "quads per side of the generated grid");
+  app.add_option("--instances", instances, "nodes placing the generated grid");
+  app.add_flag("--json", json, "print the results as JSON");
+  return baker::runGuarded("bench_scene", app, argc, argv, [&] {
+    // Bounded so that a typing slip cannot ask for more triangles than any machine holds.
+    if (grid <= 0 || grid > 8192 || instances <= 0 || instances > 1024)
+      throw baker::InputError(
+          fmt::format("--grid must be in 1..8192 and --instances in 1..1024, got {} and {}", grid, instances));
+    std::filesystem::path generated;
+    if (scene.empty()) {
+      generated = std::filesystem::temp_directory_path() / ("bench-scene-" + std::to_string(getpid()));
+      std::filesystem::create_directories(generated);
+      const pid_t child = fork();
+      if (child == 0) {
+        writeGrid(generated.string(), grid, instances);
+        _exit(0);
+      }
+      int status = 0;
+      waitpid(child, &status, 0);
+      if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+        std::filesystem::remove_all(generated);
+        throw std::runtime_error("generating the grid failed");
+      }
+      scene = (generated / "grid.gltf").string();
     }
-    int status = 0;
-    waitpid(child, &status, 0);
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-      std::cerr << "bench_scene: generating the grid failed\n";
-      return 1;
+
+    const double before = peakMiB();
+    auto start = std::chrono::steady_clock::now();
+    const baker::Scene loaded = baker::loadGltf(scene);
+    const double loadSeconds = secondsSince(start);
+    const double afterLoad = peakMiB();
+    start = std::chrono::steady_clock::now();
+    const baker::RayTracer tracer(loaded);
+    const double bvhSeconds = secondsSince(start);
+    const double afterBvh = peakMiB();
+    if (!generated.empty()) std::filesystem::remove_all(generated);
+
+    const double triangles = double(loaded.triangleCount());
+    std::uint64_t unique = 0;
+    for (const baker::Mesh& m : loaded.meshes) unique += m.triangleCount();
+    if (json) {
+      std::cout << nlohmann::json{{"scene", scene},
+                                  {"world_triangles", std::uint64_t(triangles)},
+                                  {"unique_triangles", unique},
+                                  {"instances", loaded.instances.size()},
+                                  {"instanced_meshes", tracer.instancedMeshes()},
+                                  {"load_seconds", loadSeconds},
+                                  {"bvh_seconds", bvhSeconds},
+                                  {"peak_mib_before_load", before},
+                                  {"peak_mib_after_load", afterLoad},
+                                  {"peak_mib_after_bvh", afterBvh}}
+                       .dump(2)
+                << "\n";
+      return 0;
     }
-    scene = (generated / "grid.gltf").string();
-  }
-
-  const double before = peakMiB();
-  auto start = std::chrono::steady_clock::now();
-  const baker::Scene loaded = baker::loadGltf(scene);
-  const double loadSeconds = secondsSince(start);
-  const double afterLoad = peakMiB();
-  start = std::chrono::steady_clock::now();
-  const baker::RayTracer tracer(loaded);
-  const double bvhSeconds = secondsSince(start);
-  const double afterBvh = peakMiB();
-
-  const double triangles = double(loaded.triangleCount());
-  std::uint64_t unique = 0;
-  for (const baker::Mesh& m : loaded.meshes) unique += m.triangleCount();
-  std::cout << "scene          " << scene << "\n"
-            << "triangles      " << std::uint64_t(triangles) << " in the world, " << unique << " unique, "
-            << loaded.instances.size() << " instances, " << tracer.instancedMeshes() << " instanced meshes\n"
-            << "load           " << loadSeconds << " s, " << unique / loadSeconds * 1e-6 << " M unique triangles/s\n"
-            << "bvh            " << bvhSeconds << " s, " << unique / bvhSeconds * 1e-6 << " M unique triangles/s, "
-            << triangles / bvhSeconds * 1e-6 << " M world triangles/s\n"
-            << "peak memory    " << before << " MiB before loading, " << afterLoad << " MiB after loading, " << afterBvh
-            << " MiB after the BVH\n";
-  if (!generated.empty()) std::filesystem::remove_all(generated);
-  return 0;
+    std::cout << "scene          " << scene << "\n"
+              << "triangles      " << std::uint64_t(triangles) << " in the world, " << unique << " unique, "
+              << loaded.instances.size() << " instances, " << tracer.instancedMeshes() << " instanced meshes\n"
+              << "load           " << loadSeconds << " s, " << unique / loadSeconds * 1e-6 << " M unique triangles/s\n"
+              << "bvh            " << bvhSeconds << " s, " << unique / bvhSeconds * 1e-6 << " M unique triangles/s, "
+              << triangles / bvhSeconds * 1e-6 << " M world triangles/s\n"
+              << "peak memory    " << before << " MiB before loading, " << afterLoad << " MiB after loading, "
+              << afterBvh << " MiB after the BVH\n";
+    return 0;
+  });
 }
