@@ -97,22 +97,26 @@ int main(int argc, char** argv) {
     if (grid <= 0 || grid > 8192 || instances <= 0 || instances > 1024)
       throw baker::InputError(
           fmt::format("--grid must be in 1..8192 and --instances in 1..1024, got {} and {}", grid, instances));
-    std::filesystem::path generated;
+    // The generated scene's folder goes whether the bench ends or fails.
+    struct Folder {
+      std::filesystem::path path;
+      ~Folder() {
+        std::error_code ignored;
+        if (!path.empty()) std::filesystem::remove_all(path, ignored);
+      }
+    } generated;
     if (scene.empty()) {
-      generated = std::filesystem::temp_directory_path() / ("bench-scene-" + std::to_string(getpid()));
-      std::filesystem::create_directories(generated);
+      generated.path = std::filesystem::temp_directory_path() / ("bench-scene-" + std::to_string(getpid()));
+      std::filesystem::create_directories(generated.path);
       const pid_t child = fork();
       if (child == 0) {
-        writeGrid(generated.string(), grid, instances);
+        writeGrid(generated.path.string(), grid, instances);
         _exit(0);
       }
       int status = 0;
       waitpid(child, &status, 0);
-      if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-        std::filesystem::remove_all(generated);
-        throw std::runtime_error("generating the grid failed");
-      }
-      scene = (generated / "grid.gltf").string();
+      if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) throw std::runtime_error("generating the grid failed");
+      scene = (generated.path / "grid.gltf").string();
     }
 
     const double before = peakMiB();
@@ -124,7 +128,6 @@ int main(int argc, char** argv) {
     const baker::RayTracer tracer(loaded);
     const double bvhSeconds = secondsSince(start);
     const double afterBvh = peakMiB();
-    if (!generated.empty()) std::filesystem::remove_all(generated);
 
     const double triangles = double(loaded.triangleCount());
     std::uint64_t unique = 0;
