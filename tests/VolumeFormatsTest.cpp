@@ -154,6 +154,11 @@ TEST(VolumeFormats, SampleInterpolatesLikeA3dTexture) {
   EXPECT_TRUE(sampledE(v.grid.position(2, 1, 1) + Eigen::Vector3d(10, 10, 10)).isApprox(probeE(2, 1, 1), 1e-6f));
 }
 
+std::string fileBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
 std::string errorOf(const std::string& path) {
   try {
     readVolume(path);
@@ -234,8 +239,7 @@ TEST(VolumeFormats, AnyChangedByteOfAVdbIsCaughtByItsChecksum) {
   const std::string dir = test::makeTempDir("formats_checksum");
   const auto basis = makeBasis("sh-l1");
   writeVdb(randomVolume(*basis, 3), *basis, dir + "/v.vdb");
-  std::ifstream in(dir + "/v.vdb", std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string bytes = fileBytes(dir + "/v.vdb");
   ASSERT_NE(bytes.find(kVdbChecksumKey), std::string::npos);
   EXPECT_EQ(bytes.find(kVdbChecksumPlaceholder), std::string::npos) << "the placeholder was not sealed";
   const std::size_t step = std::max<std::size_t>(1, bytes.size() / 300);
@@ -314,21 +318,17 @@ TEST(VolumeFormats, VdbWrittenGridByGridIsWhatOpenVdbWrites) {
     grids.push_back(ours.readGrid(spec.name));
   ours.close();
   ASSERT_EQ(grids.size(), 20u);
-  openvdb::io::File(dir + "/theirs.vdb").write(grids, *metadata);
+  openvdb::io::File theirs(dir + "/theirs.vdb");
+  theirs.write(grids, *metadata);
+  const std::string theirUuid = theirs.getUniqueTag();  // set when its header was written
 
   const auto bytesWithoutUuid = [](const std::string& path, const std::string& uuid) {
-    std::stringstream bytes;
-    bytes << std::ifstream(path, std::ios::binary).rdbuf();
-    std::string s = bytes.str();
+    std::string s = fileBytes(path);
     const std::size_t at = s.find(uuid);
     EXPECT_NE(at, std::string::npos) << path << " does not hold its UUID " << uuid;
     if (at != std::string::npos) s.replace(at, uuid.size(), uuid.size(), '-');
     return s;
   };
-  openvdb::io::File reopened(dir + "/theirs.vdb");
-  reopened.open(false);
-  const std::string theirUuid = reopened.getUniqueTag();
-  reopened.close();
   const std::string a = bytesWithoutUuid(dir + "/ours.vdb", ourUuid);
   const std::string b = bytesWithoutUuid(dir + "/theirs.vdb", theirUuid);
   const std::size_t common = std::min(a.size(), b.size());
