@@ -1,11 +1,16 @@
 #include "bake/EmitterSampler.h"
 
 #include <algorithm>
-#include <cmath>
 
 #include "scene/Environment.h"
 
 namespace baker {
+namespace {
+
+// Up to this many emitters, sample() searches all their running sums: three steps at most.
+constexpr std::size_t kSearchedWhole = 8;
+
+}  // namespace
 
 EmitterSampler::EmitterSampler(const Scene& scene) : scene_(scene) {
   double total = 0.0;
@@ -38,25 +43,19 @@ EmitterSampler::EmitterSampler(const Scene& scene) : scene_(scene) {
     running += p;
     cumulative_.push_back(running);
   }
-  if (!cumulative_.empty()) cumulative_.back() = 1.0;
-}
-
-EmitterSampler::Sample EmitterSampler::sample(float xiChoice, float xi1, float xi2) const {
-  // std::upper_bound without branches: its comparisons go either way at random, and each
-  // mispredicted one costs more than the comparison.
-  const double x = xiChoice;
-  const double* first = cumulative_.data();
-  for (std::size_t length = cumulative_.size(); length > 1;) {
-    const std::size_t half = length / 2;
-    first += (first[half - 1] <= x) ? half : 0;
-    length -= half;
+  if (cumulative_.empty()) return;
+  cumulative_.back() = 1.0;
+  if (cumulative_.size() <= kSearchedWhole) return;
+  // A sum's bucket is computed as sample() computes a number's, so that a sum below a number
+  // always lies in the number's bucket or an earlier one, whatever the rounding.
+  const std::size_t buckets = cumulative_.size();
+  auto bucketOf = [&](double x) { return std::min(std::size_t(x * double(buckets)), buckets - 1); };
+  guide_.assign(buckets + 1, 0);
+  std::size_t below = 0;
+  for (std::size_t j = 0; j <= buckets; ++j) {
+    while (below < cumulative_.size() && bucketOf(cumulative_[below]) < j) ++below;
+    guide_[j] = std::uint32_t(std::min(below, buckets - 1));  // no number lies past the last sum, 1
   }
-  const std::size_t index = std::size_t(first - cumulative_.data()) + (*first <= x ? 1 : 0);
-  const Emitter& e = emitters_[std::min(index, emitters_.size() - 1)];
-  // Uniform on the triangle: the square-root warp of the unit square.
-  const float s = std::sqrt(xi1);
-  const float u = s * (1.0f - xi2), v = s * xi2;
-  return {e.p0 + u * e.e1 + v * e.e2, u, v, &e};
 }
 
 float EmitterSampler::pdfArea(std::uint32_t instance, std::uint32_t triangle) const {

@@ -1,5 +1,7 @@
 #pragma once
 #include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -37,6 +39,8 @@ class EmitterSampler {
     float u, v;  // Embree's barycentrics of the point
     const Emitter* emitter;
   };
+  // Always inlined: a bake draws one per path vertex, and returned from a call the sample came
+  // back through memory in pieces that the caller then read whole, a stall at every draw.
   Sample sample(float xiChoice, float xi1, float xi2) const;
   // The per-area density sample() draws a point of this triangle with (0 for non-emitters).
   float pdfArea(std::uint32_t instance, std::uint32_t triangle) const;
@@ -44,7 +48,39 @@ class EmitterSampler {
  private:
   std::vector<Emitter> emitters_;   // sorted by globalTriangle for pdf lookups
   std::vector<double> cumulative_;  // running sum of probabilities, last = 1
+  // As many buckets as emitters split [0, 1) evenly: guide_[j] counts the running sums that
+  // fall in buckets before j, so the emitter of a number in bucket j lies in
+  // [guide_[j], guide_[j + 1]]. One more entry closes the last bucket at the last emitter.
+  // Empty for a few emitters, which a search of all of them finds sooner.
+  std::vector<std::uint32_t> guide_;
   const Scene& scene_;
 };
+
+[[gnu::always_inline]] inline EmitterSampler::Sample EmitterSampler::sample(float xiChoice, float xi1,
+                                                                             float xi2) const {
+  // std::upper_bound of xiChoice in the running sums, searched only among the few entries its
+  // bucket of the guide table allows (a search of every entry made a dozen dependent reads in a
+  // scene of thousands of emitters), and without branches: its comparisons go either way at
+  // random, and each mispredicted one costs more than the comparison.
+  const double x = xiChoice;
+  const double* first = cumulative_.data();
+  std::size_t length = cumulative_.size();
+  if (!guide_.empty()) {
+    const std::size_t bucket = std::min(std::size_t(x * double(length)), length - 1);
+    first += guide_[bucket];
+    length = guide_[bucket + 1] - guide_[bucket] + 1;
+  }
+  while (length > 1) {
+    const std::size_t half = length / 2;
+    first += (first[half - 1] <= x) ? half : 0;
+    length -= half;
+  }
+  const std::size_t index = std::size_t(first - cumulative_.data()) + (*first <= x ? 1 : 0);
+  const Emitter& e = emitters_[std::min(index, emitters_.size() - 1)];
+  // Uniform on the triangle: the square-root warp of the unit square.
+  const float s = std::sqrt(xi1);
+  const float u = s * (1.0f - xi2), v = s * xi2;
+  return {e.p0 + u * e.e1 + v * e.e2, u, v, &e};
+}
 
 }  // namespace baker

@@ -7,7 +7,6 @@
 
 #include "bake/PathRandom.h"
 #include "bake/ScratchBuffer.h"
-#include "scene/Shading.h"
 
 namespace baker {
 namespace {
@@ -102,6 +101,7 @@ struct PathIntegrator::Scratch {
   ScratchBuffer<Pending> pending;
   ScratchBuffer<bool> blocked;
   ScratchBuffer<EmitterPoint> points;
+  ScratchBuffer<SurfacePoint> emitterSurfaces;  // of the points on textured or alpha-tested emitters
   ScratchBuffer<float> pdfs;
 };
 
@@ -112,6 +112,7 @@ PathIntegrator::PathIntegrator(const Scene& scene, const RayTracer& tracer, cons
       emitters_(scene),
       sampleEmitters_(settings.emissiveLights && !emitters_.empty()),
       sampleEnvironment_(settings.environment && scene.environment.emits()),
+      textured_(!scene.images.empty()),
       sceneScale_(scene.bounds.isEmpty() ? 1.0f : scene.bounds.diagonal().norm()) {}
 
 float PathIntegrator::rayOffset(const Eigen::Vector3f& point) const {
@@ -133,11 +134,19 @@ bool PathIntegrator::makeVertex(const Hit& hit, const Eigen::Vector3f& albedo, c
   return true;
 }
 
-void PathIntegrator::prefetchTextures(const Hit* hits, int count) const {
-  if (scene_.images.empty()) return;
+void PathIntegrator::locateSurfaces(const Hit* hits, int count, SurfacePoint* surfaces) const {
+  if (!textured_) return;
   for (int i = 0; i < count; ++i)
-    if (!hits[i].missed())
-      prefetchSurface(scene_, scene_.instances[hits[i].instance].mesh, hits[i].triangle, hits[i].u, hits[i].v);
+    if (!hits[i].missed()) {
+      const Hit& hit = hits[i];
+      locateSurface(scene_, scene_.instances[hit.instance].mesh, hit.triangle, hit.u, hit.v, &surfaces[i]);
+      prefetchSurface(surfaces[i]);
+    }
+}
+
+const SurfacePoint& PathIntegrator::surfaceAt(const Hit& hit, SurfacePoint* located) const {
+  if (!textured_) locateSurface(scene_, scene_.instances[hit.instance].mesh, hit.triangle, hit.u, hit.v, located);
+  return *located;
 }
 
 void PathIntegrator::trace(const Eigen::Vector3f& position, std::uint64_t probeId, const Eigen::Vector3f* directions,
@@ -148,11 +157,12 @@ void PathIntegrator::trace(const Eigen::Vector3f& position, std::uint64_t probeI
   Vertex* vertices = scratch.vertices.reserve(std::size_t(count));
   int live = 0;
   Hit hits[8];
+  SurfacePoint surfaces[8];
   for (int first = 0; first < count; first += 8) {
     const int n = std::min(8, count - first);
     tracer_.intersect8(position, directions + first, n, hits);
     counts->probe += n;
-    prefetchTextures(hits, n);
+    locateSurfaces(hits, n, surfaces);
     for (int i = 0; i < n; ++i) {
       const int ray = first + i;
       const Hit& hit = hits[i];
@@ -162,13 +172,13 @@ void PathIntegrator::trace(const Eigen::Vector3f& position, std::uint64_t probeI
         if (seeSky) radiance[ray] = sky.radiance(directions[ray]);
         continue;
       }
-      const std::uint32_t mesh = scene_.instances[hit.instance].mesh;
-      const Material& material = scene_.material(hit.instance, hit.triangle);
+      const SurfacePoint& surface = surfaceAt(hit, &surfaces[i]);
+      const Material& material = *surface.material;
       if (settings_.emission && (hit.frontFace || material.doubleSided) && material.emissive())
-        radiance[ray] = surfaceEmission(scene_, mesh, hit.triangle, hit.u, hit.v);
+        radiance[ray] = surfaceEmission(surface);
       Vertex& v = vertices[live];
-      if (settings_.bounces > 0 && makeVertex(hit, surfaceAlbedo(scene_, mesh, hit.triangle, hit.u, hit.v), position,
-                                              directions[ray], Eigen::Vector3f::Ones(), &v)) {
+      if (settings_.bounces > 0 && makeVertex(hit, surfaceAlbedo(surface), position, directions[ray],
+                                              Eigen::Vector3f::Ones(), &v)) {
         v.path = ray;
         v.random = PathRandom(settings_.seed, probeId, std::uint64_t(ray));
         ++live;
@@ -238,15 +248,17 @@ void PathIntegrator::addNextEvents(Vertex* vertices, int count, Scratch& scratch
     // shaded, so that the scattered emission lookups wait for memory together.
     start(std::size_t(count));
     Scratch::EmitterPoint* points = scratch.points.reserve(std::size_t(count));
-    const bool textures = !scene_.images.empty();
+    SurfacePoint* surfaces = scratch.emitterSurfaces.reserve(std::size_t(count));
     for (int k = 0; k < count; ++k) {
       PathRandom& random = vertices[k].random;
       const float xiChoice = random.uniform(), xi1 = random.uniform(), xi2 = random.uniform();
       const float xiCoverage = random.uniform();
       points[k] = {&vertices[k], emitters_.sample(xiChoice, xi1, xi2), xiCoverage};
       const EmitterSampler::Sample& s = points[k].sample;
-      if (textures && (s.emitter->textured || s.emitter->alphaTested))
-        prefetchSurface(scene_, s.emitter->mesh, s.emitter->triangle, s.u, s.v);
+      if (s.emitter->textured || s.emitter->alphaTested) {
+        locateSurface(scene_, s.emitter->mesh, s.emitter->triangle, s.u, s.v, &surfaces[k]);
+        prefetchSurface(surfaces[k]);
+      }
     }
     for (int k = 0; k < count; ++k) {
       const Vertex& v = *points[k].vertex;
@@ -260,15 +272,14 @@ void PathIntegrator::addNextEvents(Vertex* vertices, int count, Scratch& scratch
       if (cosine <= 0.0f) continue;
       const float cosLight = -e.frontNormal.dot(toLight);
       if (std::abs(cosLight) < 1e-6f || (cosLight < 0.0f && !e.doubleSided)) continue;
-      if (settings_.alphaFilters && e.alphaTested &&
-          !surfaceStopsRay(scene_, e.mesh, e.triangle, s.u, s.v, points[k].xiCoverage))
+      if (settings_.alphaFilters && e.alphaTested && !surfaceStopsRay(surfaces[k], points[k].xiCoverage))
         continue;  // a transparent texel
       // The power heuristic's weight over the light's solid-angle pdf, in one division:
       // with pdfLight = a/c (a = pdfArea·r², c = |cosθ_light|) and the BSDF's b = cosθ/π,
       // (pdfLight² / (pdfLight² + b²)) / pdfLight = a·c / (a² + b²·c²).
       const float a = e.pdfArea * squaredDistance, c = std::abs(cosLight), b = cosine * kInvPi;
       const float weightOverPdf = a * c / (a * a + b * b * c * c);
-      const Eigen::Vector3f emission = e.textured ? surfaceEmission(scene_, e.mesh, e.triangle, s.u, s.v) : e.emission;
+      const Eigen::Vector3f emission = e.textured ? surfaceEmission(surfaces[k]) : e.emission;
       const Eigen::Vector3f contribution =
           v.throughput.cwiseProduct(v.albedo).cwiseProduct(emission) * (kInvPi * cosine * weightOverPdf);
       if (!(contribution.maxCoeff() > 0.0f) || !contribution.allFinite()) continue;
@@ -326,12 +337,13 @@ int PathIntegrator::continuePaths(Vertex* vertices, int count, bool keepVertices
 
   const Environment& sky = scene_.environment;
   Hit hits[8];
+  SurfacePoint surfaces[8];
   int kept = 0;
   for (int first = 0; first < survivors; first += 8) {
     const int n = std::min(8, survivors - first);
     tracer_.intersect8(rays + first, n, hits);
     counts->bounce += n;
-    if (sampleEmitters_ || keepVertices) prefetchTextures(hits, n);
+    if (sampleEmitters_ || keepVertices) locateSurfaces(hits, n, surfaces);
     for (int i = 0; i < n; ++i) {
       // What the next vertex needs of this one, copied: it may take this one's place.
       const Vertex& from = vertices[first + i];
@@ -349,10 +361,10 @@ int PathIntegrator::continuePaths(Vertex* vertices, int count, bool keepVertices
         continue;
       }
       if (!sampleEmitters_ && !keepVertices) continue;
-      const std::uint32_t mesh = scene_.instances[hit.instance].mesh;
-      const Material& material = scene_.material(hit.instance, hit.triangle);
+      const SurfacePoint& surface = surfaceAt(hit, &surfaces[i]);
+      const Material& material = *surface.material;
       if (sampleEmitters_ && (hit.frontFace || material.doubleSided) && material.emissive()) {
-        const Eigen::Vector3f emission = surfaceEmission(scene_, mesh, hit.triangle, hit.u, hit.v);
+        const Eigen::Vector3f emission = surfaceEmission(surface);
         if (emission.maxCoeff() > 0.0f) {
           const float cosLight = std::abs(hit.frontNormal.normalized().dot(ray.direction));
           const float pdfLight =
@@ -362,8 +374,7 @@ int PathIntegrator::continuePaths(Vertex* vertices, int count, bool keepVertices
         }
       }
       Vertex& next = vertices[kept];
-      if (keepVertices && makeVertex(hit, surfaceAlbedo(scene_, mesh, hit.triangle, hit.u, hit.v), ray.origin,
-                                     ray.direction, throughput, &next)) {
+      if (keepVertices && makeVertex(hit, surfaceAlbedo(surface), ray.origin, ray.direction, throughput, &next)) {
         next.path = path;
         next.random = random;
         ++kept;

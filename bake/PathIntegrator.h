@@ -6,6 +6,7 @@
 #include "bake/Transport.h"
 #include "scene/RayTracer.h"
 #include "scene/Scene.h"
+#include "scene/Shading.h"
 
 namespace baker {
 
@@ -44,9 +45,13 @@ class PathIntegrator {
   // Returns how many vertices the continued paths made (in place of the old ones).
   int continuePaths(Vertex* vertices, int count, bool keepVertices, Scratch& scratch, Eigen::Vector3f* radiance,
                     RayCounts* counts) const;
-  // Texture lookups at scattered hits miss the cache: a packet's are announced before any is
-  // shaded, so that their latencies overlap. Nothing to do in a scene without textures.
-  void prefetchTextures(const Hit* hits, int count) const;
+  // In a textured scene, locates the surfaces a packet hit and starts loading their texels:
+  // texture lookups at scattered hits miss the cache, and a packet's are announced before any
+  // is shaded, so that their latencies overlap.
+  void locateSurfaces(const Hit* hits, int count, SurfacePoint* surfaces) const;
+  // The surface of a hit, from locateSurfaces or else located now (in `located`): without
+  // textures there is nothing to prefetch, and a point used at once costs less.
+  const SurfacePoint& surfaceAt(const Hit& hit, SurfacePoint* located) const;
   bool makeVertex(const Hit& hit, const Eigen::Vector3f& albedo, const Eigen::Vector3f& origin,
                   const Eigen::Vector3f& direction, const Eigen::Vector3f& throughput, Vertex* vertex) const;
 
@@ -56,6 +61,7 @@ class PathIntegrator {
   EmitterSampler emitters_;
   bool sampleEmitters_;     // emissive triangles light surfaces, and there are some
   bool sampleEnvironment_;  // the sky lights surfaces
+  bool textured_;           // the scene has textures
   float sceneScale_;
 };
 

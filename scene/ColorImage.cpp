@@ -96,6 +96,7 @@ ColorImage::Footprint ColorImage::footprint(const Eigen::Vector2f& uv, const Sam
   const double s = reduce(std::isfinite(uv.x()) ? uv.x() : 0.0, sampler.wrapS) * width_;
   const double t = reduce(std::isfinite(uv.y()) ? uv.y() : 0.0, sampler.wrapT) * height_;
   Footprint f;
+  f.nearest = sampler.nearest;
   if (sampler.nearest) {
     f.x0 = f.x1 = wrapIndex(int(floorOf(s)), width_, sampler.wrapS);
     f.y0 = f.y1 = wrapIndex(int(floorOf(t)), height_, sampler.wrapT);
@@ -113,15 +114,13 @@ ColorImage::Footprint ColorImage::footprint(const Eigen::Vector2f& uv, const Sam
   return f;
 }
 
-Eigen::Vector4f ColorImage::sample(const Eigen::Vector2f& uv, const SamplerState& sampler) const {
-  const Footprint f = footprint(uv, sampler);
-  if (sampler.nearest) return texel(f.x0, f.y0);
+Eigen::Vector4f ColorImage::sample(const Footprint& f) const {
+  if (f.nearest) return texel(f.x0, f.y0);
   return (1.0f - f.ay) * ((1.0f - f.ax) * texel(f.x0, f.y0) + f.ax * texel(f.x1, f.y0)) +
          f.ay * ((1.0f - f.ax) * texel(f.x0, f.y1) + f.ax * texel(f.x1, f.y1));
 }
 
-void ColorImage::prefetch(const Eigen::Vector2f& uv, const SamplerState& sampler) const {
-  const Footprint f = footprint(uv, sampler);
+void ColorImage::prefetch(const Footprint& f) const {
   for (int y : {f.y0, f.y1})
     for (int x : {f.x0, f.x1}) {
       const std::size_t k = (std::size_t(y) * width_ + x) * 4;

@@ -37,23 +37,29 @@ class ColorImage {
 
   // Linear RGBA of texel (x, y), both in range.
   Eigen::Vector4f texel(int x, int y) const;
-  // Linear RGBA at glTF texture coordinates `uv`, wrapped and filtered as `sampler` says.
-  // Non-finite coordinates read as 0.
-  Eigen::Vector4f sample(const Eigen::Vector2f& uv, const SamplerState& sampler) const;
-  // Starts loading the texels sample() reads at `uv` into the cache and returns at once: a bake
-  // looks textures up at scattered points, and a batch of lookups that announces itself first
-  // waits for its cache misses together instead of one after another.
-  void prefetch(const Eigen::Vector2f& uv, const SamplerState& sampler) const;
 
- private:
-  // The texels a lookup at `uv` reads (x0 = x1 and y0 = y1 when nearest) and the bilinear
-  // weights of the second column and row.
+  // The texels a lookup at glTF texture coordinates `uv` reads, wrapped as `sampler` says
+  // (x0 = x1 and y0 = y1 when nearest), and the bilinear weights of the second column and
+  // row. Non-finite coordinates read as 0.
   struct Footprint {
     int x0 = 0, x1 = 0, y0 = 0, y1 = 0;
     float ax = 0.0f, ay = 0.0f;
+    bool nearest = false;
   };
   Footprint footprint(const Eigen::Vector2f& uv, const SamplerState& sampler) const;
+  // Starts loading a footprint's texels into the cache and returns at once: a bake looks
+  // textures up at scattered points, and a batch of lookups that announces itself first waits
+  // for its cache misses together instead of one after another. The same footprint is then
+  // read with sample(), so that finding the texels is paid once.
+  void prefetch(const Footprint& footprint) const;
+  // Linear RGBA of a footprint, filtered by its weights.
+  Eigen::Vector4f sample(const Footprint& footprint) const;
+  // Linear RGBA at `uv`, wrapped and filtered as `sampler` says.
+  Eigen::Vector4f sample(const Eigen::Vector2f& uv, const SamplerState& sampler) const {
+    return sample(footprint(uv, sampler));
+  }
 
+ private:
   int width_ = 0;
   int height_ = 0;
   std::vector<std::uint8_t, HugePageAllocator<std::uint8_t>> bytes_;

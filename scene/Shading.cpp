@@ -3,90 +3,87 @@
 namespace baker {
 namespace {
 
-// A point of a triangle: its corners and their barycentric weights.
-struct TrianglePoint {
-  const Mesh& mesh;
-  const Eigen::Vector3i& corners;
-  float w0, w1, w2;
-
-  template <typename T>
-  T interpolate(const std::vector<T>& attribute) const {
-    return w0 * attribute[corners[0]] + w1 * attribute[corners[1]] + w2 * attribute[corners[2]];
-  }
-};
-
-TrianglePoint pointOf(const Mesh& mesh, std::uint32_t triangle, float u, float v) {
-  return {mesh, mesh.triangles[triangle], 1.0f - u - v, u, v};
+template <typename T>
+T interpolate(const SurfacePoint& p, const std::vector<T>& attribute) {
+  const Eigen::Vector3i& c = *p.corners;
+  return p.w0 * attribute[c[0]] + p.w1 * attribute[c[1]] + p.w2 * attribute[c[2]];
 }
 
-// The texture coordinates `slot` reads at the point, after its KHR_texture_transform.
-Eigen::Vector2f texCoords(const TextureSlot& slot, const TrianglePoint& p) {
-  const auto& sets = p.mesh.texcoords;
+// Where `slot`'s texture is read at the point: its coordinates after KHR_texture_transform,
+// wrapped onto texels.
+ColorImage::Footprint texelsOf(const ColorImage& image, const TextureSlot& slot, const SurfacePoint& p) {
+  const auto& sets = p.mesh->texcoords;
   const Eigen::Vector2f uv = std::size_t(slot.texCoord) < sets.size() && !sets[slot.texCoord].empty()
-                                 ? p.interpolate(sets[slot.texCoord])
+                                 ? interpolate(p, sets[slot.texCoord])
                                  : Eigen::Vector2f::Zero();
-  return slot.uvTransform * uv.homogeneous();
+  // Written out: Eigen's product with uv.homogeneous() is not inlined, and costs more than this.
+  const Eigen::Matrix<float, 2, 3>& m = slot.uvTransform;
+  return image.footprint({m(0, 0) * uv.x() + m(0, 1) * uv.y() + m(0, 2), m(1, 0) * uv.x() + m(1, 1) * uv.y() + m(1, 2)},
+                         slot.sampler);
 }
 
-Eigen::Vector4f lookup(const Scene& scene, const TextureSlot& slot, const TrianglePoint& p) {
-  return scene.images[slot.image].sample(texCoords(slot, p), slot.sampler);
-}
-
-Eigen::Vector4f baseColor(const Scene& scene, const Material& m, const TrianglePoint& p) {
-  Eigen::Vector4f c = m.baseColor;
-  if (m.baseColorTexture.present()) c = c.cwiseProduct(lookup(scene, m.baseColorTexture, p));
-  if (!p.mesh.colors.empty()) c = c.cwiseProduct(p.interpolate(p.mesh.colors));
+Eigen::Vector4f baseColor(const SurfacePoint& p) {
+  Eigen::Vector4f c = p.material->baseColor;
+  if (p.baseColorImage) c = c.cwiseProduct(p.baseColorImage->sample(p.baseColorTexels));
+  if (!p.mesh->colors.empty()) c = c.cwiseProduct(interpolate(p, p.mesh->colors));
   return c;
-}
-
-Eigen::Vector3f emission(const Scene& scene, const Material& m, const TrianglePoint& p) {
-  if (!m.emissiveTexture.present() || !m.emissive()) return m.emission;
-  return m.emission.cwiseProduct(lookup(scene, m.emissiveTexture, p).head<3>());
 }
 
 }  // namespace
 
+void locateSurface(const Scene& scene, std::uint32_t mesh, std::uint32_t triangle, float u, float v,
+                   SurfacePoint* point) {
+  SurfacePoint& p = *point;
+  p.mesh = &scene.meshes[mesh];
+  p.material = &scene.materials[p.mesh->triangleMaterial[triangle]];
+  p.corners = &p.mesh->triangles[triangle];
+  p.w0 = 1.0f - u - v;
+  p.w1 = u;
+  p.w2 = v;
+  const Material& m = *p.material;
+  p.baseColorImage = m.baseColorTexture.present() ? &scene.images[m.baseColorTexture.image] : nullptr;
+  if (p.baseColorImage) p.baseColorTexels = texelsOf(*p.baseColorImage, m.baseColorTexture, p);
+  p.emissiveImage = m.emissiveTexture.present() && m.emissive() ? &scene.images[m.emissiveTexture.image] : nullptr;
+  if (p.emissiveImage) p.emissiveTexels = texelsOf(*p.emissiveImage, m.emissiveTexture, p);
+}
+
+void prefetchSurface(const SurfacePoint& p) {
+  if (p.baseColorImage) p.baseColorImage->prefetch(p.baseColorTexels);
+  if (p.emissiveImage) p.emissiveImage->prefetch(p.emissiveTexels);
+}
+
+Eigen::Vector3f surfaceAlbedo(const SurfacePoint& p) { return baseColor(p).head<3>(); }
+
+Eigen::Vector3f surfaceEmission(const SurfacePoint& p) {
+  if (!p.emissiveImage) return p.material->emission;
+  return p.material->emission.cwiseProduct(p.emissiveImage->sample(p.emissiveTexels).head<3>());
+}
+
 SurfaceSample shadeSurface(const Scene& scene, std::uint32_t mesh, std::uint32_t triangle, float u, float v) {
-  const Mesh& m = scene.meshes[mesh];
-  const Material& material = scene.materials[m.triangleMaterial[triangle]];
-  const TrianglePoint p = pointOf(m, triangle, u, v);
-  const Eigen::Vector4f base = baseColor(scene, material, p);
+  SurfacePoint p;
+  locateSurface(scene, mesh, triangle, u, v, &p);
+  const Eigen::Vector4f base = baseColor(p);
   SurfaceSample s;
   s.albedo = base.head<3>();
-  s.alpha = material.alphaTested() ? base.w() : 1.0f;
-  s.emission = emission(scene, material, p);
-  s.doubleSided = material.doubleSided;
+  s.alpha = p.material->alphaTested() ? base.w() : 1.0f;
+  s.emission = surfaceEmission(p);
+  s.doubleSided = p.material->doubleSided;
   return s;
 }
 
-Eigen::Vector3f surfaceAlbedo(const Scene& scene, std::uint32_t mesh, std::uint32_t triangle, float u, float v) {
-  const Mesh& m = scene.meshes[mesh];
-  return baseColor(scene, scene.materials[m.triangleMaterial[triangle]], pointOf(m, triangle, u, v)).head<3>();
-}
-
-Eigen::Vector3f surfaceEmission(const Scene& scene, std::uint32_t mesh, std::uint32_t triangle, float u, float v) {
-  const Mesh& m = scene.meshes[mesh];
-  return emission(scene, scene.materials[m.triangleMaterial[triangle]], pointOf(m, triangle, u, v));
-}
-
-void prefetchSurface(const Scene& scene, std::uint32_t mesh, std::uint32_t triangle, float u, float v) {
-  const Mesh& m = scene.meshes[mesh];
-  const Material& material = scene.materials[m.triangleMaterial[triangle]];
-  const TrianglePoint p = pointOf(m, triangle, u, v);
-  if (material.baseColorTexture.present())
-    scene.images[material.baseColorTexture.image].prefetch(texCoords(material.baseColorTexture, p),
-                                                           material.baseColorTexture.sampler);
-  if (material.emissiveTexture.present() && material.emissive())
-    scene.images[material.emissiveTexture.image].prefetch(texCoords(material.emissiveTexture, p),
-                                                          material.emissiveTexture.sampler);
+bool surfaceStopsRay(const SurfacePoint& p, float xi) {
+  const Material& material = *p.material;
+  if (!material.alphaTested()) return true;
+  const float alpha = baseColor(p).w();
+  return material.alphaMode == AlphaMode::Mask ? alpha >= material.alphaCutoff : xi < alpha;
 }
 
 bool surfaceStopsRay(const Scene& scene, std::uint32_t mesh, std::uint32_t triangle, float u, float v, float xi) {
-  const Mesh& m = scene.meshes[mesh];
-  const Material& material = scene.materials[m.triangleMaterial[triangle]];
+  const Material& material = scene.materials[scene.meshes[mesh].triangleMaterial[triangle]];
   if (!material.alphaTested()) return true;
-  const float alpha = baseColor(scene, material, pointOf(m, triangle, u, v)).w();
-  return material.alphaMode == AlphaMode::Mask ? alpha >= material.alphaCutoff : xi < alpha;
+  SurfacePoint p;
+  locateSurface(scene, mesh, triangle, u, v, &p);
+  return surfaceStopsRay(p, xi);
 }
 
 }  // namespace baker
