@@ -46,15 +46,12 @@ EmitterSampler::EmitterSampler(const Scene& scene) : scene_(scene) {
   if (cumulative_.empty()) return;
   cumulative_.back() = 1.0;
   if (cumulative_.size() <= kSearchedWhole) return;
-  // A sum's bucket is computed as sample() computes a number's, so that a sum below a number
-  // always lies in the number's bucket or an earlier one, whatever the rounding.
   const std::size_t buckets = cumulative_.size();
-  auto bucketOf = [&](double x) { return std::min(std::size_t(x * double(buckets)), buckets - 1); };
   guide_.assign(buckets + 1, 0);
   std::size_t below = 0;
   for (std::size_t j = 0; j <= buckets; ++j) {
-    while (below < cumulative_.size() && bucketOf(cumulative_[below]) < j) ++below;
-    guide_[j] = std::uint32_t(std::min(below, buckets - 1));  // no number lies past the last sum, 1
+    while (below < cumulative_.size() && bucketOf(cumulative_[below], buckets) < j) ++below;
+    guide_[j] = std::min(below, buckets - 1);  // no number lies past the last sum, 1
   }
 }
 

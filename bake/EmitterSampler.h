@@ -52,7 +52,14 @@ class EmitterSampler {
   // fall in buckets before j, so the emitter of a number in bucket j lies in
   // [guide_[j], guide_[j + 1]]. One more entry closes the last bucket at the last emitter.
   // Empty for a few emitters, which a search of all of them finds sooner.
-  std::vector<std::uint32_t> guide_;
+  std::vector<std::size_t> guide_;
+  // The bucket of x among `buckets`, for numbers and running sums alike: computed one way for
+  // both, so that rounding cannot put a sum below a number in a later bucket than the number's.
+  // A sum that overflowed (infinite or NaN power) goes to the last bucket, as no number is
+  // above it.
+  static std::size_t bucketOf(double x, std::size_t buckets) {
+    return x < 1.0 ? std::min(std::size_t(x * double(buckets)), buckets - 1) : buckets - 1;
+  }
   const Scene& scene_;
 };
 
@@ -66,7 +73,7 @@ class EmitterSampler {
   const double* first = cumulative_.data();
   std::size_t length = cumulative_.size();
   if (!guide_.empty()) {
-    const std::size_t bucket = std::min(std::size_t(x * double(length)), length - 1);
+    const std::size_t bucket = bucketOf(x, length);
     first += guide_[bucket];
     length = guide_[bucket + 1] - guide_[bucket] + 1;
   }

@@ -7,6 +7,7 @@
 
 #include "bake/PathRandom.h"
 #include "bake/ScratchBuffer.h"
+#include "scene/Shading.h"
 
 namespace baker {
 namespace {

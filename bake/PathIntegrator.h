@@ -6,9 +6,10 @@
 #include "bake/Transport.h"
 #include "scene/RayTracer.h"
 #include "scene/Scene.h"
-#include "scene/Shading.h"
 
 namespace baker {
+
+struct SurfacePoint;
 
 // Radiance arriving at a probe along fixed directions, one Lambertian path per direction.
 //
@@ -49,8 +50,9 @@ class PathIntegrator {
   // texture lookups at scattered hits miss the cache, and a packet's are announced before any
   // is shaded, so that their latencies overlap.
   void locateSurfaces(const Hit* hits, int count, SurfacePoint* surfaces) const;
-  // The surface of a hit, from locateSurfaces or else located now (in `located`): without
-  // textures there is nothing to prefetch, and a point used at once costs less.
+  // The surface of a hit: in a textured scene the one locateSurfaces stored for its packet
+  // (which must have run), else located now in `located`. Without textures there is nothing to
+  // prefetch, and a point used at once costs less.
   const SurfacePoint& surfaceAt(const Hit& hit, SurfacePoint* located) const;
   bool makeVertex(const Hit& hit, const Eigen::Vector3f& albedo, const Eigen::Vector3f& origin,
                   const Eigen::Vector3f& direction, const Eigen::Vector3f& throughput, Vertex* vertex) const;

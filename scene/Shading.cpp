@@ -17,6 +17,7 @@ ColorImage::Footprint texelsOf(const ColorImage& image, const TextureSlot& slot,
                                  ? interpolate(p, sets[slot.texCoord])
                                  : Eigen::Vector2f::Zero();
   // Written out: Eigen's product with uv.homogeneous() is not inlined, and costs more than this.
+  // It adds in the same order, (m00·u + m01·v) + m02, so textures read the same texels.
   const Eigen::Matrix<float, 2, 3>& m = slot.uvTransform;
   return image.footprint({m(0, 0) * uv.x() + m(0, 1) * uv.y() + m(0, 2), m(1, 0) * uv.x() + m(1, 1) * uv.y() + m(1, 2)},
                          slot.sampler);

@@ -38,7 +38,7 @@ Scene manyEmitters(int count) {
 // probabilities: sweeping x over a fine grid chooses the emitters in order, each for as much of
 // the grid as its share of power (to the grid's resolution).
 TEST(EmitterSampler, ChoosesEachEmitterForItsShareOfPower) {
-  for (int count : {1, 2, 3, 500}) {
+  for (int count : {1, 2, 3, 8, 9, 10, 500}) {
     const Scene scene = manyEmitters(count);
     const EmitterSampler sampler(scene);
     ASSERT_EQ(sampler.size(), std::size_t(count));
@@ -64,6 +64,46 @@ TEST(EmitterSampler, ChoosesEachEmitterForItsShareOfPower) {
       EXPECT_NEAR(double(chosen[k]) / kSteps, shares[k] / total, 1.0 / kSteps + 1e-6 * shares[k] / total)
           << "triangle " << k << " of " << count;
   }
+}
+
+// Equal powers put the running sums exactly on the guide table's bucket edges, k/16: a number
+// on an edge is past the sum there (std::upper_bound), one just below it is not.
+TEST(EmitterSampler, NumbersOnABucketEdgeChooseTheEmitterAfterIt) {
+  constexpr int kCount = 16;
+  Scene scene;
+  Mesh mesh;
+  for (int k = 0; k < kCount; ++k) {
+    mesh.positions.push_back({0.0f, 0.0f, float(k)});
+    mesh.positions.push_back({1.0f, 0.0f, float(k)});
+    mesh.positions.push_back({0.0f, 1.0f, float(k)});
+    mesh.triangles.push_back({3 * k, 3 * k + 1, 3 * k + 2});
+    mesh.triangleMaterial.push_back(0);
+  }
+  mesh.alphaTestedBegin = kCount;
+  scene.meshes.push_back(mesh);
+  scene.instances.push_back(Instance{});
+  Material material;
+  material.emission = Eigen::Vector3f::Ones();
+  scene.materials.push_back(material);
+  const EmitterSampler sampler(scene);
+  for (std::uint32_t k = 1; k < kCount; ++k) {
+    const float edge = float(k) / kCount;
+    EXPECT_EQ(sampler.sample(edge, 0.5f, 0.5f).emitter->triangle, k) << "x = " << edge;
+    EXPECT_EQ(sampler.sample(std::nextafter(edge, 0.0f), 0.5f, 0.5f).emitter->triangle, k - 1) << "below " << edge;
+  }
+}
+
+// An emitter whose power overflows single precision makes every running sum after it infinite:
+// those sums still sort above every number, so the search does what it does for finite sums
+// (here, all but the smallest numbers choose that emitter) instead of misplacing the sums.
+TEST(EmitterSampler, AnEmitterWhosePowerOverflowsKeepsTheSearchInOrder) {
+  Scene scene = manyEmitters(20);
+  for (Eigen::Vector3f& p : scene.meshes[0].positions)
+    if (p.z() == 5.0f) p.head<2>() *= 100.0f;
+  scene.materials[5].emission = Eigen::Vector3f::Constant(3e38f);
+  const EmitterSampler sampler(scene);
+  for (int k = 1; k < 1024; ++k)
+    ASSERT_EQ(sampler.sample(float(k) / 1024, 0.5f, 0.5f).emitter->triangle, 5u) << "x = " << float(k) / 1024;
 }
 
 // Extreme numbers still land on an emitter: 0 on the first with any power, the largest float
