@@ -1,13 +1,14 @@
 #include "bake/GramOperators.h"
 
 #include <fmt/format.h>
+#include <tbb/parallel_for.h>
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <vector>
 
-#include "bake/ProjectionOperator.h"
 #include "bake/Quadrature.h"
 #include "bake/SphereQuadrature.h"
 #include "bake/SphericalGaussianBasis.h"
@@ -56,22 +57,78 @@ DirectionSet productQuadrature(const SphericalFunctions& f, const SphericalFunct
 
 // Σ_k w_k f(d_k) g(d_k)ᵀ over the rule, one block of nodes at a time: a table of every value at
 // every node would take count × nodes doubles, nearly 1 GB for SH of order 24 on the tiling.
+// Locally supported functions (Ambient Dice: a quarter of the sphere each) are zero on most
+// blocks, whose nodes follow the tiling piece by piece: each block's product takes only the
+// rows of f that are non-zero on it. Chunks of blocks run in parallel, each summing its blocks in
+// order, and the chunks' sums are added in order: chunks are fixed by the rule alone, so any
+// number of threads gives the same bits.
 Eigen::MatrixXd weightedProducts(const SphericalFunctions& f, const SphericalFunctions& g, const DirectionSet& q) {
-  constexpr int kBlock = 512;
+  constexpr std::size_t kBlock = 512;
+  constexpr std::size_t kChunk = 16 * kBlock;
   const bool same = &f == &g;
-  Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(f.count(), g.count());
-  Eigen::MatrixXd fValues(f.count(), kBlock), weighted(f.count(), kBlock), gValues(same ? 0 : g.count(), kBlock);
-  for (std::size_t first = 0; first < q.size(); first += kBlock) {
-    const int n = int(std::min<std::size_t>(kBlock, q.size() - first));
-    for (int k = 0; k < n; ++k) {
-      f.evaluate(q.directions[first + k], fValues.col(k).data());
-      weighted.col(k) = q.weights[first + k] * fValues.col(k);
-      if (!same) g.evaluate(q.directions[first + k], gValues.col(k).data());
+  const std::size_t chunks = (q.size() + kChunk - 1) / kChunk;
+  std::vector<Eigen::MatrixXd> partial(chunks);
+  tbb::parallel_for(std::size_t(0), chunks, [&](std::size_t chunk) {
+    Eigen::MatrixXd& sum = partial[chunk];
+    sum.setZero(f.count(), g.count());
+    Eigen::MatrixXd fValues(f.count(), kBlock), gValues(same ? 0 : g.count(), kBlock);
+    Eigen::MatrixXd weighted, active;  // the non-zero rows of f: weighted, and (for f·f) plain
+    std::vector<int> rows;
+    const std::size_t end = std::min(q.size(), (chunk + 1) * kChunk);
+    for (std::size_t first = chunk * kChunk; first < end; first += kBlock) {
+      const int n = int(std::min(kBlock, end - first));
+      for (int k = 0; k < n; ++k) {
+        f.evaluate(q.directions[first + k], fValues.col(k).data());
+        if (!same) g.evaluate(q.directions[first + k], gValues.col(k).data());
+      }
+      rows.clear();
+      for (int i = 0; i < f.count(); ++i)
+        if (!(fValues.row(i).leftCols(n).array() == 0.0).all()) rows.push_back(i);
+      const int r = int(rows.size());
+      weighted.resize(r, n);
+      active.resize(same ? r : 0, n);
+      for (int a = 0; a < r; ++a)
+        for (int k = 0; k < n; ++k) {
+          weighted(a, k) = q.weights[first + k] * fValues(rows[a], k);
+          if (same) active(a, k) = fValues(rows[a], k);
+        }
+      const Eigen::MatrixXd block = weighted * (same ? active : gValues.leftCols(n)).transpose();
+      for (int a = 0; a < r; ++a) {
+        if (same)
+          for (int b = 0; b < r; ++b) sum(rows[a], rows[b]) += block(a, b);
+        else
+          sum.row(rows[a]) += block.row(a);
+      }
     }
-    sum.noalias() += weighted.leftCols(n) * (same ? fValues : gValues).leftCols(n).transpose();
-  }
+  });
+  Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(f.count(), g.count());
+  for (const Eigen::MatrixXd& p : partial) sum += p;
   return sum;
 }
+
+// The real SH of one order restricted to some of its bands, in index order. An operator that
+// weights bands by the clamped cosine multiplies every odd band above 1 by zero: their moments,
+// over half of all at high orders, need not be integrated.
+class ShBandSubset : public SphericalFunctions {
+ public:
+  ShBandSubset(int order, const std::vector<int>& bands) : sh_(order) {
+    for (int l : bands)
+      for (int i = l * l; i < (l + 1) * (l + 1); ++i) indices_.push_back(i);
+  }
+  const std::vector<int>& indices() const { return indices_; }
+  int count() const override { return int(indices_.size()); }
+  void evaluate(const Eigen::Vector3d& direction, double* values) const override {
+    thread_local std::vector<double> all;
+    all.resize(std::size_t(sh_.count()));
+    sh_.evaluate(direction, all.data());
+    for (std::size_t k = 0; k < indices_.size(); ++k) values[k] = all[std::size_t(indices_[k])];
+  }
+  int polynomialDegree() const override { return sh_.order(); }
+
+ private:
+  SphericalHarmonics sh_;
+  std::vector<int> indices_;
+};
 
 // ∫ f_i² dω for every function, with the piecewise quadrature of `order`.
 Eigen::VectorXd squaredNorms(const SphericalFunctions& f, int order) {
@@ -198,14 +255,19 @@ int resolvableShOrder(std::size_t sampleCount) {
   return order;
 }
 
-Eigen::MatrixXd GramOperators::irradianceFromSamples(const DirectionSet& samples, int shOrder,
-                                                     const BandWindow& window) const {
-  const SphericalHarmonics sh(shOrder);
-  return leastSquaresProjection(irradianceFromSh(shOrder, window), sh, samples, label_ + " (SH fit of the samples)");
-}
-
 Eigen::MatrixXd GramOperators::irradianceFromSh(int order, const BandWindow& window) const {
-  return inverse_ * shMoments(order) * bandFactors(order, window).asDiagonal();
+  const Eigen::VectorXd factors = bandFactors(order, window);
+  std::vector<int> bands;
+  for (int l = 0; l <= order; ++l)
+    if (factors[l * l] != 0.0) bands.push_back(l);
+  const ShBandSubset kept(order, bands);
+  Eigen::VectorXd keptFactors(kept.count());
+  for (int k = 0; k < kept.count(); ++k) keptFactors[k] = factors[kept.indices()[k]];
+  const Eigen::MatrixXd convolved = inverse_ * innerProducts(functions_, kept) * keptFactors.asDiagonal();
+  // The bands left out are multiplied by zero: their columns stay zero.
+  Eigen::MatrixXd result = Eigen::MatrixXd::Zero(functions_.count(), factors.size());
+  for (int k = 0; k < kept.count(); ++k) result.col(kept.indices()[k]) = convolved.col(k);
+  return result;
 }
 
 ShReproduction GramOperators::shReproduction(int maxOrder) const {

@@ -64,14 +64,8 @@ class GramOperators {
   // bands until no entry changes by more than 1e-6 of the largest. Reports the order used.
   Eigen::MatrixXd radianceToIrradiance(const BandWindow& window = {}, int* orderUsed = nullptr) const;
 
-  // Radiance samples → irradiance coefficients in one operator, G⁻¹ B_sh C P: P fits the
-  // samples with SH of order `shOrder` (weighted least squares), C convolves with the clamped
-  // cosine, G⁻¹ B_sh projects the result exactly into this basis. What a bake applies to each
-  // brick. Bands above what the samples resolve would only carry their aliasing, so the caller
-  // passes resolvableShOrder(samples).
-  Eigen::MatrixXd irradianceFromSamples(const DirectionSet& samples, int shOrder, const BandWindow& window = {}) const;
-
-  // SH coefficients of radiance up to `order` → irradiance coefficients: G⁻¹ B_sh C.
+  // SH coefficients of radiance up to `order` → irradiance coefficients: G⁻¹ B_sh C. Bands that
+  // C (with the window) multiplies by zero are not integrated; their columns are zero.
   Eigen::MatrixXd irradianceFromSh(int order, const BandWindow& window = {}) const;
 
   ShReproduction shReproduction(int maxOrder) const;

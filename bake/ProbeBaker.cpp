@@ -9,7 +9,9 @@
 #include "bake/DirectionSet.h"
 #include "bake/NonNegativeProjection.h"
 #include "bake/PathRandom.h"
+#include "bake/ProjectionOperator.h"
 #include "bake/ScratchBuffer.h"
+#include "bake/SphericalHarmonics.h"
 
 namespace baker {
 namespace {
@@ -73,12 +75,17 @@ ProbeBaker::ProbeBaker(const Scene& scene, const RayTracer& tracer, const Basis&
   const DirectionSet fibonacci = sphericalFibonacci(settings.rays);
   weights_ = fibonacci.weights;
   shOrder_ = std::min(resolvableShOrder(fibonacci.size()), kMaxSampleShOrder);
-  std::vector<DirectionSet> sets;
+  // Each rotation's SH fit of the samples serves every function set of the basis. Only the
+  // first rotation's conditioning is computed: the others have the same spectrum.
+  const SphericalHarmonics sampleSh(shOrder_);
+  std::vector<SampledFit> shFits;
   for (int r = 0; r < rotations; ++r) {
-    sets.push_back(rotated(fibonacci, fixedRotation(r)));
+    const DirectionSet set = rotated(fibonacci, fixedRotation(r));
     std::vector<Eigen::Vector3f> d;
-    for (const Eigen::Vector3d& v : sets.back().directions) d.push_back(v.cast<float>());
+    for (const Eigen::Vector3d& v : set.directions) d.push_back(v.cast<float>());
     directions_.push_back(std::move(d));
+    shFits.emplace_back(sampleSh, set, basis.name() + " (SH fit of the samples)",
+                        r == 0 ? SampledFit::Conditioning::Check : SampledFit::Conditioning::CheckedByRotation);
   }
   const bool punctualAtProbe = settings.transport.directPunctual && !punctual_.empty();
   for (int c = 0; c < 3; ++c) {
@@ -92,8 +99,9 @@ ProbeBaker::ProbeBaker(const Scene& scene, const RayTracer& tracer, const Basis&
     group.firstChannel = c;
     group.channelCount = 1;
     group.functions = basis.functions(c).count();
-    for (const DirectionSet& set : sets)
-      group.fromSamples.push_back(ops.irradianceFromSamples(set, shOrder_, settings.projection.window).cast<float>());
+    // G⁻¹ B_sh C after each rotation's fit P: samples → irradiance coefficients in one operator.
+    const Eigen::MatrixXd fromSh = ops.irradianceFromSh(shOrder_, settings.projection.window);
+    for (const SampledFit& fit : shFits) group.fromSamples.push_back(fit.after(fromSh).cast<float>());
     if (punctualAtProbe)
       group.fromPunctualSh = ops.irradianceFromSh(punctual_.shOrder(), settings.projection.window);
     if (settings.projection.nonNegative) group.gram = ops.gram();

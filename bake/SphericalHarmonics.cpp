@@ -22,30 +22,32 @@ void SphericalHarmonics::evaluate(const Eigen::Vector3d& d, double* values) cons
   const double x = d.x(), y = d.y(), z = d.z();
   // cos(mφ)·sin^m θ and sin(mφ)·sin^m θ are the real and imaginary parts of (x + iy)^m, and
   // P(l,m)(z) / sin^m θ is a polynomial in z: together they avoid angles and divisions.
-  double cosPart = 1.0, sinPart = 0.0;  // (x + iy)^m
-  double diagonal = 1.0;                // P(m,m)/sin^m θ = (2m−1)!!
-  for (int m = 0; m <= order_; ++m) {
-    if (m > 0) {
-      const double c = cosPart * x - sinPart * y;
-      sinPart = cosPart * y + sinPart * x;
-      cosPart = c;
-      diagonal *= 2 * m - 1;
+  double cosPart[kMaxOrder + 1], sinPart[kMaxOrder + 1];  // (x + iy)^m
+  double previous[kMaxOrder + 1], current[kMaxOrder + 1];  // P(l−1,m), P(l,m) over sin^m θ
+  cosPart[0] = 1.0;
+  sinPart[0] = 0.0;
+  current[0] = 1.0;  // P(m,m)/sin^m θ = (2m−1)!!
+  for (int m = 1; m <= order_; ++m) {
+    cosPart[m] = cosPart[m - 1] * x - sinPart[m - 1] * y;
+    sinPart[m] = cosPart[m - 1] * y + sinPart[m - 1] * x;
+    current[m] = current[m - 1] * (2 * m - 1);
+  }
+  // Band by band, so that the recurrences of the different m, each a chain of dependent
+  // divisions, run side by side rather than one after another.
+  for (int l = 0; l <= order_; ++l) {
+    for (int m = 0; m < l; ++m) {
+      const double next = ((2 * l - 1) * z * current[m] - (l + m - 1) * previous[m]) / (l - m);
+      previous[m] = current[m];
+      current[m] = next;
     }
-    double previous = 0.0, current = diagonal;  // P(l−1,m), P(l,m) over sin^m θ, from l = m
-    for (int l = m; l <= order_; ++l) {
-      if (l > m) {
-        const double next = ((2 * l - 1) * z * current - (l + m - 1) * previous) / (l - m);
-        previous = current;
-        current = next;
-      }
-      const double scaled = normalisation_[l * (l + 1) / 2 + m] * current;
-      const int centre = l * l + l;
-      if (m == 0) {
-        values[centre] = scaled;
-      } else {
-        values[centre + m] = scaled * cosPart;
-        values[centre - m] = scaled * sinPart;
-      }
+    previous[l] = 0.0;
+    const double* norm = normalisation_.data() + l * (l + 1) / 2;
+    double* band = values + l * l + l;
+    band[0] = norm[0] * current[0];
+    for (int m = 1; m <= l; ++m) {
+      const double scaled = norm[m] * current[m];
+      band[m] = scaled * cosPart[m];
+      band[-m] = scaled * sinPart[m];
     }
   }
 }

@@ -1,11 +1,14 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <tbb/global_control.h>
+
 #include <random>
 
 #include "bake/BasisRegistry.h"
 #include "bake/GramOperators.h"
 #include "bake/SphereQuadrature.h"
+#include "bake/SphericalHarmonics.h"
 
 namespace baker {
 namespace {
@@ -57,6 +60,52 @@ TEST(BasisOperators, ProjectionFromSamplesReproducesTheSpan) {
     }
     EXPECT_LT((ops.fromSamples(q) * samples - c).cwiseAbs().maxCoeff(), 1e-8 * c.cwiseAbs().maxCoeff()) << set.label;
   }
+}
+
+// The bands the clamped cosine (and the window) multiply by zero are never integrated: the
+// operator must still be G⁻¹ B_sh C over all bands, with exactly zero columns for those bands.
+TEST(BasisOperators, IrradianceFromShLeavesOutOnlyTheBandsItZeroes) {
+  constexpr int kOrder = 8;
+  for (const FunctionSet& set : allFunctionSets())
+    for (const BandWindow window : {BandWindow{}, BandWindow{5}}) {
+      const GramOperators ops(set.functions(), set.label);
+      Eigen::VectorXd factors(SphericalHarmonics(kOrder).count());
+      for (int l = 0; l <= kOrder; ++l)
+        factors.segment(l * l, 2 * l + 1).setConstant(clampedCosineBand(l) * window.factor(l));
+      const Eigen::MatrixXd full = ops.gramInverse() * ops.shMoments(kOrder) * factors.asDiagonal();
+      const Eigen::MatrixXd kept = ops.irradianceFromSh(kOrder, window);
+      ASSERT_EQ(kept.cols(), full.cols());
+      EXPECT_LT((kept - full).cwiseAbs().maxCoeff(), 1e-12 * full.cwiseAbs().maxCoeff())
+          << set.label << ", window " << window.hannWidth;
+      for (int j = 0; j < factors.size(); ++j)
+        if (factors[j] == 0.0) EXPECT_TRUE((kept.col(j).array() == 0.0).all()) << set.label << ", column " << j;
+    }
+}
+
+// Inner products are summed in chunks fixed by the quadrature, not by the threads, and each
+// block multiplies only the functions non-zero on it: the same bits on one thread and on
+// several, and the plain sum over every node.
+TEST(BasisOperators, InnerProductsAreTheSameOnAnyNumberOfThreadsAndMatchThePlainSum) {
+  const auto basis = makeBasis("ad-ycocg");
+  const SphericalFunctions& f = basis->functions(0);
+  const SphericalHarmonics sh(6);
+  Eigen::MatrixXd oneThread;
+  {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+    oneThread = innerProducts(f, sh);
+  }
+  const Eigen::MatrixXd threads = innerProducts(f, sh);
+  EXPECT_TRUE(threads == oneThread);
+
+  const DirectionSet q = piecewiseSphereQuadrature(kExactQuadratureOrder, f.kinkPlanes());
+  Eigen::MatrixXd plain = Eigen::MatrixXd::Zero(f.count(), sh.count());
+  Eigen::VectorXd fValues(f.count()), shValues(sh.count());
+  for (std::size_t k = 0; k < q.size(); ++k) {
+    f.evaluate(q.directions[k], fValues.data());
+    sh.evaluate(q.directions[k], shValues.data());
+    plain += q.weights[k] * fValues * shValues.transpose();
+  }
+  EXPECT_LT((threads - plain).cwiseAbs().maxCoeff(), 1e-13 * plain.cwiseAbs().maxCoeff());
 }
 
 // A constant radiance of 1 gives an irradiance of π for every normal (paper eq. 7). The

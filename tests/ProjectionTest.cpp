@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <random>
 
 #include "bake/DirectionSet.h"
@@ -40,6 +41,29 @@ TEST(Projection, RefusesTooFewDirectionsWithAClearMessage) {
   } catch (const NumericalError& e) {
     EXPECT_NE(std::string(e.what()).find("sh-l8"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("more rays"), std::string::npos) << e.what();
+  }
+}
+
+// A bake checks the conditioning of its first rotation's SH fit only: a rotated set's sampled
+// Gram matrix is D·G·Dᵀ with D orthogonal, so it has the same spectrum.
+TEST(Projection, RotatingTheDirectionsKeepsTheFitsConditioning) {
+  const SphericalHarmonics sh(7);
+  const DirectionSet set = sphericalFibonacci(256);
+  const double unrotated = SampledFit(sh, set, "sh-l7").conditionNumber();
+  std::mt19937 rng(3);
+  std::normal_distribution<double> normal;
+  for (int trial = 0; trial < 4; ++trial) {
+    const Eigen::Quaterniond q(normal(rng), normal(rng), normal(rng), normal(rng));
+    DirectionSet turned = set;
+    for (Eigen::Vector3d& d : turned.directions) d = q.normalized() * d;
+    const double rotated = SampledFit(sh, turned, "sh-l7").conditionNumber();
+    EXPECT_NEAR(rotated, unrotated, 1e-9 * unrotated) << "rotation " << trial;
+    // Skipping the check changes nothing else about the fit.
+    const Eigen::MatrixXd left = Eigen::MatrixXd::Random(3, sh.count());
+    const SampledFit checked(sh, turned, "sh-l7"),
+        unchecked(sh, turned, "sh-l7", SampledFit::Conditioning::CheckedByRotation);
+    EXPECT_EQ(unchecked.conditionNumber(), 0.0);
+    EXPECT_TRUE(checked.after(left) == unchecked.after(left));
   }
 }
 
