@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <atomic>
 #include <chrono>
@@ -56,22 +57,31 @@ Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basi
       const Eigen::Vector3i lo = brick * kBrickSize;
       const Eigen::Vector3i hi = (lo.array() + kBrickSize).min(grid.dims.array());
       RayCounts& counts = brickRays[b];
-      std::vector<ProbeTask> tasks;
+      std::vector<ProbeTask> candidates;
       for (int k = lo.z(); k < hi.z(); ++k)
         for (int j = lo.y(); j < hi.y(); ++j)
-          for (int i = lo.x(); i < hi.x(); ++i) {
-            const std::int64_t index = grid.linearIndex(i, j, k);
-            const Eigen::Vector3f position = grid.position(i, j, k).cast<float>();
-            Eigen::Vector3f offset = Eigen::Vector3f::Zero();
-            if (settings.transport.probeValidity) {
-              const ProbePlacement placement = placeProbe(tracer, position, float(grid.spacing), testDirections,
-                                                          validityOptions, &counts.validity);
-              volume.states[index] = placement.state;
-              volume.offsets[index] = offset = placement.offset;
-              if (placement.state == ProbeState::Invalid) continue;
-            }
-            tasks.push_back({position + offset, std::uint64_t(index), rotationOf(i, j, k)});
-          }
+          for (int i = lo.x(); i < hi.x(); ++i)
+            candidates.push_back({grid.position(i, j, k).cast<float>(), std::uint64_t(grid.linearIndex(i, j, k)),
+                                  rotationOf(i, j, k)});
+      if (settings.transport.probeValidity) {
+        // Placed side by side like the probes' tracing (ProbeBaker::bake), and isolated for the
+        // same reason. Each probe's validity rays are counted apart and summed in order.
+        std::vector<std::int64_t> validityRays(candidates.size(), 0);
+        tbb::this_task_arena::isolate([&] {
+          tbb::parallel_for(std::size_t(0), candidates.size(), [&](std::size_t c) {
+            const std::int64_t index = std::int64_t(candidates[c].id);
+            const ProbePlacement placement = placeProbe(tracer, candidates[c].position, float(grid.spacing),
+                                                        testDirections, validityOptions, &validityRays[c]);
+            volume.states[index] = placement.state;
+            volume.offsets[index] = placement.offset;
+            candidates[c].position += placement.offset;
+          });
+        });
+        for (std::int64_t n : validityRays) counts.validity += n;
+      }
+      std::vector<ProbeTask> tasks;
+      for (const ProbeTask& candidate : candidates)
+        if (volume.states[candidate.id] != ProbeState::Invalid) tasks.push_back(candidate);
       coefficients.resize(tasks.size() * volume.coefficientsPerProbe);
       visibility.resize(tasks.size() * volume.visibilityPerProbe);
       probeBaker.bake(tasks, coefficients.data(), visibility.data(), &counts);

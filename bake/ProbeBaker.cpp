@@ -1,9 +1,14 @@
 #include "bake/ProbeBaker.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <mutex>
 #include <numeric>
 
 #include "bake/DirectionSet.h"
@@ -15,6 +20,9 @@
 
 namespace baker {
 namespace {
+
+// Probes traced per task: about a millisecond of work at 256 rays, far above the cost of a task.
+constexpr int kProbesPerTask = 8;
 
 // Rotation 0 is the identity; the others are uniformly random rotations (Shoemake's method)
 // from a fixed stream, so they are the same in every bake.
@@ -131,57 +139,72 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
   Eigen::MatrixXd punctualSh;
   const int shCount = punctual_.shCount();
   if (punctualAtProbe) punctualSh.setZero(shCount, 3 * p);
-  bool anyPunctual = false;
-  thread_local std::vector<Eigen::Vector3f> radiance;
-  thread_local std::vector<float> sky;
-  radiance.resize(rays);
-  sky.resize(rays);
+  std::atomic<bool> anyPunctual{false};
 
   struct Block {
     int rotation, first, count;
   };
   std::vector<Block> blocks;
+  std::vector<int> blockOf(p);  // of each probe in rotation order
   for (int s = 0; s < p; ++s) {
     const int rotation = tasks[order[s]].rotation;
     if (blocks.empty() || blocks.back().rotation != rotation) blocks.push_back({rotation, s, 0});
     ++blocks.back().count;
+    blockOf[s] = int(blocks.size()) - 1;
   }
-  for (const Block& block : blocks) {
-    const std::vector<Eigen::Vector3f>& dirs = directions_[block.rotation];
-    for (int within = 0; within < block.count; ++within) {
-      const int taskIndex = order[block.first + within];
-      const ProbeTask& task = tasks[taskIndex];
-      integrator_.trace(task.position, task.id, dirs.data(), rays, radiance.data(), sky.data(), counts);
-      const int base = 4 * block.first;
-      for (int r = 0; r < rays; ++r) {
-        const Eigen::Vector3f value = toColorSpace(space, radiance[r]);
-        for (int c = 0; c < 3; ++c) columns(r, base + c * block.count + within) = value[c];
-        columns(r, base + 3 * block.count + within) = sky[r];
-      }
-      std::vector<PunctualAtProbe::Arrival> lights;
-      if (punctualAtProbe) {
-        lights = punctual_.visibleLights(task.position, counts);
-        if (!lights.empty()) {
-          anyPunctual = true;
-          std::vector<double> sh(3 * shCount, 0.0);
-          punctual_.addHarmonics(lights, sh.data());
-          for (int i = 0; i < shCount; ++i) {
-            const Eigen::Vector3d rgb(sh[i], sh[shCount + i], sh[2 * shCount + i]);
-            const Eigen::Vector3d value = toColorSpace(space, rgb.cast<float>()).cast<double>();
-            for (int c = 0; c < 3; ++c) punctualSh(i, c * p + taskIndex) = value[c];
+
+  // A probe's samples depend on nothing but the probe, so they are traced a few probes per task:
+  // a volume of a few bricks keeps every thread busy to the end, where whole bricks would leave
+  // one thread finishing the last brick alone. Isolated, so that a thread waiting here takes
+  // only this brick's probes, never another brick, whose bake would reuse this thread's store.
+  std::mutex countsMutex;
+  tbb::this_task_arena::isolate([&] {
+    tbb::parallel_for(tbb::blocked_range<int>(0, p, kProbesPerTask), [&](const tbb::blocked_range<int>& range) {
+      thread_local std::vector<Eigen::Vector3f> radiance;
+      thread_local std::vector<float> sky;
+      radiance.resize(rays);
+      sky.resize(rays);
+      RayCounts rangeCounts;
+      for (int s = range.begin(); s < range.end(); ++s) {
+        const Block& block = blocks[blockOf[s]];
+        const std::vector<Eigen::Vector3f>& dirs = directions_[block.rotation];
+        const int within = s - block.first;
+        const int taskIndex = order[s];
+        const ProbeTask& task = tasks[taskIndex];
+        integrator_.trace(task.position, task.id, dirs.data(), rays, radiance.data(), sky.data(), &rangeCounts);
+        const int base = 4 * block.first;
+        for (int r = 0; r < rays; ++r) {
+          const Eigen::Vector3f value = toColorSpace(space, radiance[r]);
+          for (int c = 0; c < 3; ++c) columns(r, base + c * block.count + within) = value[c];
+          columns(r, base + 3 * block.count + within) = sky[r];
+        }
+        std::vector<PunctualAtProbe::Arrival> lights;
+        if (punctualAtProbe) {
+          lights = punctual_.visibleLights(task.position, &rangeCounts);
+          if (!lights.empty()) {
+            anyPunctual = true;
+            std::vector<double> sh(3 * shCount, 0.0);
+            punctual_.addHarmonics(lights, sh.data());
+            for (int i = 0; i < shCount; ++i) {
+              const Eigen::Vector3d rgb(sh[i], sh[shCount + i], sh[2 * shCount + i]);
+              const Eigen::Vector3d value = toColorSpace(space, rgb.cast<float>()).cast<double>();
+              for (int c = 0; c < 3; ++c) punctualSh(i, c * p + taskIndex) = value[c];
+            }
           }
         }
+        if (samples) {
+          ProbeSamples& probeSamples = (*samples)[taskIndex];
+          probeSamples.directions = dirs;
+          probeSamples.weights = weights_;
+          probeSamples.radiance = radiance;
+          probeSamples.visibility = sky;
+          probeSamples.punctual = lights;
+        }
       }
-      if (samples) {
-        ProbeSamples& s = (*samples)[taskIndex];
-        s.directions = dirs;
-        s.weights = weights_;
-        s.radiance = radiance;
-        s.visibility = sky;
-        s.punctual = lights;
-      }
-    }
-  }
+      const std::lock_guard<std::mutex> lock(countsMutex);
+      *counts += rangeCounts;  // integers: the same totals in any order
+    });
+  });
 
   // Each coefficient is a dot product of an operator row with a probe's samples, written straight
   // to the output: the brick's operator-times-samples product, coefficient by coefficient. Eigen's

@@ -1,0 +1,47 @@
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include "bake/Baker.h"
+#include "bake/BasisRegistry.h"
+#include "scene/GltfLoader.h"
+#include "scene/RayTracer.h"
+#include "tests/TestData.h"
+
+namespace baker {
+namespace {
+
+// Bricks are shared out between threads, and within a brick the probes' placement and tracing
+// are too: every number of threads must give the same bits and the same ray counts. default_room
+// has every effect a bake simulates but the sky: bounces, an emissive panel, probes in walls.
+TEST(ThreadDeterminism, EveryThreadCountBakesTheSameVolume) {
+  const Scene scene = loadGltf(test::sourcePath("data/default_room/default_room.gltf"));
+  const RayTracer tracer(scene);
+  const auto basis = makeBasis("ad-ycocg");
+  const ProbeGrid grid = makeProbeGrid(scene.bounds, 0.4, 100000);
+  BakeSettings settings;
+  settings.rays = 64;
+  const auto bakeWith = [&](int threads, BakeStats* stats) {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    return bakeVolume(scene, tracer, *basis, grid, settings, stats);
+  };
+  BakeStats oneStats;
+  const Volume one = bakeWith(1, &oneStats);
+  ASSERT_GT(oneStats.bricks, 1);
+  ASSERT_GT(oneStats.relocatedProbes + oneStats.invalidProbes, 0) << "no probe exercises the placement";
+  for (int threads : {2, 3}) {
+    BakeStats stats;
+    const Volume other = bakeWith(threads, &stats);
+    EXPECT_EQ(other.coefficients, one.coefficients) << threads << " threads";
+    EXPECT_EQ(other.visibility, one.visibility) << threads << " threads";
+    EXPECT_EQ(other.states, one.states) << threads << " threads";
+    ASSERT_EQ(other.offsets.size(), one.offsets.size());
+    for (std::size_t p = 0; p < one.offsets.size(); ++p)
+      ASSERT_EQ(other.offsets[p], one.offsets[p]) << "probe " << p << ", " << threads << " threads";
+    EXPECT_EQ(stats.rays.total(), oneStats.rays.total()) << threads << " threads";
+    EXPECT_EQ(stats.rays.validity, oneStats.rays.validity) << threads << " threads";
+    EXPECT_EQ(stats.rays.bounce, oneStats.rays.bounce) << threads << " threads";
+  }
+}
+
+}  // namespace
+}  // namespace baker
