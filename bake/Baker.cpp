@@ -64,8 +64,8 @@ Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basi
             candidates.push_back({grid.position(i, j, k).cast<float>(), std::uint64_t(grid.linearIndex(i, j, k)),
                                   rotationOf(i, j, k)});
       if (settings.transport.probeValidity) {
-        // Placed side by side like the probes' tracing (ProbeBaker::bake), and isolated for the
-        // same reason. Each probe's validity rays are counted apart and summed in order.
+        // Placed side by side like the probes' tracing (ProbeBaker::bake). Isolated so that a
+        // waiting thread does not start a brick of its own inside this one.
         std::vector<std::int64_t> validityRays(candidates.size(), 0);
         tbb::this_task_arena::isolate([&] {
           tbb::parallel_for(std::size_t(0), candidates.size(), [&](std::size_t c) {

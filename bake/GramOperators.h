@@ -2,7 +2,6 @@
 #include <Eigen/Core>
 #include <functional>
 #include <map>
-#include <memory>
 #include <string>
 
 #include "bake/DirectionSet.h"

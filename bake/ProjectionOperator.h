@@ -31,7 +31,6 @@ class SampledFit {
   SampledFit(const SphericalFunctions& functions, const DirectionSet& samples, const std::string& label,
              Conditioning conditioning = Conditioning::Check);
 
-  int functionCount() const { return int(weightedBasis_.rows()); }
   // Of BᵀWB; 0 when the conditioning was not computed (CheckedByRotation).
   double conditionNumber() const { return conditionNumber_; }
   // P itself.

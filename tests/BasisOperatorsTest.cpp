@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <tbb/global_control.h>
+#include <tbb/task_arena.h>
 
 #include <random>
 
@@ -66,9 +67,9 @@ TEST(BasisOperators, ProjectionFromSamplesReproducesTheSpan) {
 // operator must still be G⁻¹ B_sh C over all bands, with exactly zero columns for those bands.
 TEST(BasisOperators, IrradianceFromShLeavesOutOnlyTheBandsItZeroes) {
   constexpr int kOrder = 8;
-  for (const FunctionSet& set : allFunctionSets())
+  for (const FunctionSet& set : allFunctionSets()) {
+    const GramOperators ops(set.functions(), set.label);
     for (const BandWindow window : {BandWindow{}, BandWindow{5}}) {
-      const GramOperators ops(set.functions(), set.label);
       Eigen::VectorXd factors(SphericalHarmonics(kOrder).count());
       for (int l = 0; l <= kOrder; ++l)
         factors.segment(l * l, 2 * l + 1).setConstant(clampedCosineBand(l) * window.factor(l));
@@ -80,32 +81,38 @@ TEST(BasisOperators, IrradianceFromShLeavesOutOnlyTheBandsItZeroes) {
       for (int j = 0; j < factors.size(); ++j)
         if (factors[j] == 0.0) EXPECT_TRUE((kept.col(j).array() == 0.0).all()) << set.label << ", column " << j;
     }
+  }
 }
 
 // Inner products are summed in chunks fixed by the quadrature, not by the threads, and each
 // block multiplies only the functions non-zero on it: the same bits on one thread and on
-// several, and the plain sum over every node.
+// three, and the plain sum over every node, for f against SH and for f against itself (Gram).
 TEST(BasisOperators, InnerProductsAreTheSameOnAnyNumberOfThreadsAndMatchThePlainSum) {
   const auto basis = makeBasis("ad-ycocg");
   const SphericalFunctions& f = basis->functions(0);
   const SphericalHarmonics sh(6);
-  Eigen::MatrixXd oneThread;
-  {
-    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
-    oneThread = innerProducts(f, sh);
-  }
-  const Eigen::MatrixXd threads = innerProducts(f, sh);
-  EXPECT_TRUE(threads == oneThread);
+  const auto withThreads = [](int threads, const auto& compute) {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    tbb::task_arena arena(threads);
+    return arena.execute(compute);
+  };
+  const Eigen::MatrixXd moments = withThreads(1, [&] { return innerProducts(f, sh); });
+  const Eigen::MatrixXd gram = withThreads(1, [&] { return innerProducts(f, f); });
+  EXPECT_TRUE(withThreads(3, [&] { return innerProducts(f, sh); }) == moments);
+  EXPECT_TRUE(withThreads(3, [&] { return innerProducts(f, f); }) == gram);
 
   const DirectionSet q = piecewiseSphereQuadrature(kExactQuadratureOrder, f.kinkPlanes());
-  Eigen::MatrixXd plain = Eigen::MatrixXd::Zero(f.count(), sh.count());
+  Eigen::MatrixXd plainMoments = Eigen::MatrixXd::Zero(f.count(), sh.count());
+  Eigen::MatrixXd plainGram = Eigen::MatrixXd::Zero(f.count(), f.count());
   Eigen::VectorXd fValues(f.count()), shValues(sh.count());
   for (std::size_t k = 0; k < q.size(); ++k) {
     f.evaluate(q.directions[k], fValues.data());
     sh.evaluate(q.directions[k], shValues.data());
-    plain += q.weights[k] * fValues * shValues.transpose();
+    plainMoments += q.weights[k] * fValues * shValues.transpose();
+    plainGram += q.weights[k] * fValues * fValues.transpose();
   }
-  EXPECT_LT((threads - plain).cwiseAbs().maxCoeff(), 1e-13 * plain.cwiseAbs().maxCoeff());
+  EXPECT_LT((moments - plainMoments).cwiseAbs().maxCoeff(), 1e-12 * plainMoments.cwiseAbs().maxCoeff());
+  EXPECT_LT((gram - plainGram).cwiseAbs().maxCoeff(), 1e-12 * plainGram.cwiseAbs().maxCoeff());
 }
 
 // A constant radiance of 1 gives an irradiance of π for every normal (paper eq. 7). The

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
+#include <tbb/task_arena.h>
 
 #include "bake/Baker.h"
 #include "bake/BasisRegistry.h"
@@ -12,22 +13,32 @@ namespace {
 
 // Bricks are shared out between threads, and within a brick the probes' placement and tracing
 // are too: every number of threads must give the same bits and the same ray counts. default_room
-// has every effect a bake simulates but the sky: bounces, an emissive panel, probes in walls.
+// with a point light added has every effect a bake simulates but the sky: bounces, an emissive
+// panel, a punctual light seen by the probes and by every bounce, probes in walls.
 TEST(ThreadDeterminism, EveryThreadCountBakesTheSameVolume) {
-  const Scene scene = loadGltf(test::sourcePath("data/default_room/default_room.gltf"));
+  Scene scene = loadGltf(test::sourcePath("data/default_room/default_room.gltf"));
+  PunctualLight lamp;
+  lamp.position = scene.bounds.center();
+  lamp.intensity = 5.0f;
+  scene.lights.push_back(lamp);
   const RayTracer tracer(scene);
   const auto basis = makeBasis("ad-ycocg");
   const ProbeGrid grid = makeProbeGrid(scene.bounds, 0.4, 100000);
   BakeSettings settings;
   settings.rays = 64;
+  // An arena of its own, with the limit raised to match, has that many threads even on a
+  // machine with fewer cores.
   const auto bakeWith = [&](int threads, BakeStats* stats) {
     const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-    return bakeVolume(scene, tracer, *basis, grid, settings, stats);
+    tbb::task_arena arena(threads);
+    return arena.execute([&] { return bakeVolume(scene, tracer, *basis, grid, settings, stats); });
   };
   BakeStats oneStats;
   const Volume one = bakeWith(1, &oneStats);
   ASSERT_GT(oneStats.bricks, 1);
   ASSERT_GT(oneStats.relocatedProbes + oneStats.invalidProbes, 0) << "no probe exercises the placement";
+  ASSERT_GT(oneStats.rays.directPunctualShadow, 0) << "no probe sees the point light";
+  ASSERT_GT(oneStats.rays.punctualShadow, 0) << "no bounce sees the point light";
   for (int threads : {2, 3}) {
     BakeStats stats;
     const Volume other = bakeWith(threads, &stats);
@@ -40,6 +51,7 @@ TEST(ThreadDeterminism, EveryThreadCountBakesTheSameVolume) {
     EXPECT_EQ(stats.rays.total(), oneStats.rays.total()) << threads << " threads";
     EXPECT_EQ(stats.rays.validity, oneStats.rays.validity) << threads << " threads";
     EXPECT_EQ(stats.rays.bounce, oneStats.rays.bounce) << threads << " threads";
+    EXPECT_EQ(stats.rays.directPunctualShadow, oneStats.rays.directPunctualShadow) << threads << " threads";
   }
 }
 
