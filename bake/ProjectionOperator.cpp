@@ -28,7 +28,10 @@ SampledFit::SampledFit(const SphericalFunctions& functions, const DirectionSet& 
     basis.row(k) = values.transpose();
     weightedBasis_.col(k) = samples.weights[k] * values;
   }
-  const Eigen::MatrixXd gram = weightedBasis_ * basis;
+  // Only the lower triangle: the eigenvalues and the LDLT read nothing else, and the product
+  // costs half as much.
+  Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(f, f);
+  gram.triangularView<Eigen::Lower>() = weightedBasis_ * basis;
   if (conditioning == Conditioning::Check) {
     // The condition number needs only the spectrum, which is cheaper without the eigenvectors.
     const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(gram, Eigen::EigenvaluesOnly);
