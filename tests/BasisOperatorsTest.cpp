@@ -1,15 +1,13 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
-#include <tbb/global_control.h>
-#include <tbb/task_arena.h>
-
 #include <random>
 
 #include "bake/BasisRegistry.h"
 #include "bake/GramOperators.h"
 #include "bake/SphereQuadrature.h"
 #include "bake/SphericalHarmonics.h"
+#include "tests/OnThreads.h"
 
 namespace baker {
 namespace {
@@ -91,15 +89,10 @@ TEST(BasisOperators, InnerProductsAreTheSameOnAnyNumberOfThreadsAndMatchThePlain
   const auto basis = makeBasis("ad-ycocg");
   const SphericalFunctions& f = basis->functions(0);
   const SphericalHarmonics sh(6);
-  const auto withThreads = [](int threads, const auto& compute) {
-    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-    tbb::task_arena arena(threads);
-    return arena.execute(compute);
-  };
-  const Eigen::MatrixXd moments = withThreads(1, [&] { return innerProducts(f, sh); });
-  const Eigen::MatrixXd gram = withThreads(1, [&] { return innerProducts(f, f); });
-  EXPECT_TRUE(withThreads(3, [&] { return innerProducts(f, sh); }) == moments);
-  EXPECT_TRUE(withThreads(3, [&] { return innerProducts(f, f); }) == gram);
+  const Eigen::MatrixXd moments = test::onThreads(1, [&] { return innerProducts(f, sh); });
+  const Eigen::MatrixXd gram = test::onThreads(1, [&] { return innerProducts(f, f); });
+  EXPECT_TRUE(test::onThreads(3, [&] { return innerProducts(f, sh); }) == moments);
+  EXPECT_TRUE(test::onThreads(3, [&] { return innerProducts(f, f); }) == gram);
 
   const DirectionSet q = piecewiseSphereQuadrature(kExactQuadratureOrder, f.kinkPlanes());
   Eigen::MatrixXd plainMoments = Eigen::MatrixXd::Zero(f.count(), sh.count());

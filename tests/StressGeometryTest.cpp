@@ -3,7 +3,6 @@
 // primitive of two million triangles. Each loads, bakes finite, and bakes what it should.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
-#include <tbb/global_control.h>
 
 #include <chrono>
 #include <cmath>
@@ -14,6 +13,7 @@
 #include "scene/GltfLoader.h"
 #include "scene/RayTracer.h"
 #include "tests/GltfTestAssets.h"
+#include "tests/OnThreads.h"
 #include "tests/TestData.h"
 #include "tests/TransportTestSupport.h"
 
@@ -129,8 +129,7 @@ TEST_F(StressGeometry, CoincidentSurfacesBakeDeterministicallyAsOneOrTheOther) {
   settings.transport.bounces = 0;
   const ProbeGrid grid = makeProbeGrid(scene.bounds, 0.25, 1000);
   const auto bakeWith = [&](int threads) {
-    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-    return bakeVolume(scene, tracer, *basis_, grid, settings, nullptr);
+    return test::onThreads(threads, [&] { return bakeVolume(scene, tracer, *basis_, grid, settings, nullptr); });
   };
   const Volume one = bakeWith(1), two = bakeWith(2);
   EXPECT_EQ(one.coefficients, two.coefficients);

@@ -1,11 +1,9 @@
 #include <gtest/gtest.h>
-#include <tbb/global_control.h>
-#include <tbb/task_arena.h>
-
 #include "bake/Baker.h"
 #include "bake/BasisRegistry.h"
 #include "scene/GltfLoader.h"
 #include "scene/RayTracer.h"
+#include "tests/OnThreads.h"
 #include "tests/TestData.h"
 
 namespace baker {
@@ -26,12 +24,8 @@ TEST(ThreadDeterminism, EveryThreadCountBakesTheSameVolume) {
   const ProbeGrid grid = makeProbeGrid(scene.bounds, 0.4, 100000);
   BakeSettings settings;
   settings.rays = 64;
-  // An arena of its own, with the limit raised to match, has that many threads even on a
-  // machine with fewer cores.
   const auto bakeWith = [&](int threads, BakeStats* stats) {
-    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-    tbb::task_arena arena(threads);
-    return arena.execute([&] { return bakeVolume(scene, tracer, *basis, grid, settings, stats); });
+    return test::onThreads(threads, [&] { return bakeVolume(scene, tracer, *basis, grid, settings, stats); });
   };
   BakeStats oneStats;
   const Volume one = bakeWith(1, &oneStats);
