@@ -16,6 +16,7 @@
 #include "common/Timing.h"
 #include "formats/VolumeMetadata.h"
 #include "formats/VolumeWriter.h"
+#include "images/ImageFiles.h"
 
 namespace baker {
 namespace {
@@ -40,6 +41,8 @@ int runBakeCommand(int argc, char** argv) {
 
   return runGuarded("baker", app, argc, argv, [&]() {
     const VolumeOutput output = volumeOutput(options.scenePath, outPath, format, precision);
+    // EXR slices are written through the image module: a missing one fails now, not after the bake.
+    if (output.format == VolumeFormat::Exr) requireImageModule();
     const auto start = std::chrono::steady_clock::now();
     std::ostringstream silenced;
     PreparedBake prepared = prepareBake(app, options, quiet ? silenced : std::cerr);

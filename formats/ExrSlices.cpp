@@ -1,12 +1,12 @@
 #include "formats/ExrSlices.h"
 
-#include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <nlohmann/json.hpp>
 
 #include "bake/BasisRegistry.h"
@@ -15,6 +15,7 @@
 #include "formats/VolumeHeader.h"
 #include "formats/VolumeLayout.h"
 #include "formats/VolumeMetadata.h"
+#include "images/ImageFiles.h"
 
 namespace baker {
 namespace {
@@ -65,20 +66,19 @@ bool replaceableVolumeDirectory(const std::string& path) { return isExrSliceDire
 
 // Opens slice k, named `name` in the manifest, after checking that it is a file in the volume's
 // directory holding slice k at the grid's size (InputError naming the slice otherwise).
-std::unique_ptr<OIIO::ImageInput> openSlice(const std::filesystem::path& dir, const std::string& name, int k,
-                                            const ProbeGrid& g, const std::string& manifestPath) {
+std::unique_ptr<ImageReader> openSlice(const std::filesystem::path& dir, const std::string& name, int k,
+                                       const ProbeGrid& g, const std::string& manifestPath) {
   if (name.find('/') != std::string::npos || name.find('\\') != std::string::npos)
     throw InputError(fmt::format("{}: slice name \"{}\" must be a file in the volume's directory", manifestPath, name));
   const std::string slicePath = (dir / name).string();
   std::error_code ec;
   if (!std::filesystem::is_regular_file(slicePath, ec)) throw InputError(fmt::format("{}: slice file is missing", slicePath));
-  auto image = OIIO::ImageInput::open(slicePath);
-  if (!image) throw InputError(fmt::format("{}: cannot read: {}", slicePath, oneLine(OIIO::geterror())));
-  const OIIO::ImageSpec& spec = image->spec();
+  auto image = std::make_unique<ImageReader>(slicePath);
+  const ImageHeader& spec = image->header();
   if (spec.width != g.dims.x() || spec.height != g.dims.y() || spec.depth != 1)
     throw InputError(fmt::format("{}: {} × {} pixels, expected {} × {}", slicePath, spec.width, spec.height,
                                  g.dims.x(), g.dims.y()));
-  const int holds = spec.get_int_attribute("baker.slice", -1);
+  const int holds = image->intAttribute("baker.slice", -1);
   if (holds != k) throw InputError(fmt::format("{}: holds slice {}, but the manifest lists it as slice {}", slicePath, holds, k));
   return image;
 }
@@ -94,27 +94,31 @@ void writeExrSlices(const Volume& volume, const Basis& basis, const std::string&
   requireFiniteVolume(volume);
   const std::vector<VolumeGrid> grids = volumeGrids(basis, volume.visibilityPerProbe, !volume.states.empty());
   const double scale = coefficientScale(volume, precision);
-  const OIIO::TypeDesc storage = precision == ExrPrecision::Half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT;
+  const PixelType storage = precision == ExrPrecision::Half ? PixelType::Half : PixelType::Float;
   const std::vector<bool> stored = storedBricks(volume);
 
-  OIIO::ImageSpec spec(volume.grid.dims.x(), volume.grid.dims.y(), 0, storage);
+  ImageToWrite slice;
+  slice.format = "openexr";
+  slice.width = volume.grid.dims.x();
+  slice.height = volume.grid.dims.y();
+  slice.pixelType = PixelType::Float;
+  slice.compression = "zip";
   std::vector<std::pair<const VolumeGrid*, int>> channels;
   for (const VolumeGrid& g : grids)
     for (int c = 0; c < g.components; ++c) {
       channels.push_back({&g, c});
-      spec.channelnames.push_back(componentName(g, c));
-      spec.channelformats.push_back(alwaysFloat(g) ? OIIO::TypeDesc::FLOAT : storage);
+      slice.channelNames.push_back(componentName(g, c));
+      slice.channelStorage.push_back(alwaysFloat(g) ? PixelType::Float : storage);
     }
-  spec.nchannels = int(channels.size());
-  spec.alpha_channel = -1;
-  spec.attribute("compression", "zip");
-  const nlohmann::json manifest = manifestOf(volume, basis, precision, scale, spec.channelnames);
-  for (const auto& [key, value] : manifest["metadata"].items()) spec.attribute(key, value.get<std::string>());
-  spec.attribute("baker.dims", fmt::format("{} {} {}", volume.grid.dims.x(), volume.grid.dims.y(), volume.grid.dims.z()));
-  spec.attribute("baker.origin", fmt::format("{:.17g} {:.17g} {:.17g}", volume.grid.origin.x(), volume.grid.origin.y(),
-                                             volume.grid.origin.z()));
-  spec.attribute("baker.spacing", fmt::format("{:.17g}", volume.grid.spacing));
-  spec.attribute("baker.coefficient_scale", fmt::format("{:.17g}", scale));
+  const nlohmann::json manifest = manifestOf(volume, basis, precision, scale, slice.channelNames);
+  for (const auto& [key, value] : manifest["metadata"].items())
+    slice.textAttributes.push_back({key, value.get<std::string>()});
+  slice.textAttributes.push_back(
+      {"baker.dims", fmt::format("{} {} {}", volume.grid.dims.x(), volume.grid.dims.y(), volume.grid.dims.z())});
+  slice.textAttributes.push_back({"baker.origin", fmt::format("{:.17g} {:.17g} {:.17g}", volume.grid.origin.x(),
+                                                              volume.grid.origin.y(), volume.grid.origin.z())});
+  slice.textAttributes.push_back({"baker.spacing", fmt::format("{:.17g}", volume.grid.spacing)});
+  slice.textAttributes.push_back({"baker.coefficient_scale", fmt::format("{:.17g}", scale)});
 
   AtomicDirectory out(directory, replaceableVolumeDirectory);
   const ProbeGrid& g = volume.grid;
@@ -128,14 +132,12 @@ void writeExrSlices(const Volume& volume, const Basis& basis, const std::string&
         for (const auto& [grid, c] : channels)
           pixels[n++] = keep ? float(gridValue(volume, *grid, c, p) / (scaled(*grid) ? scale : 1.0)) : 0.0f;
       }
-    OIIO::ImageSpec slice = spec;
-    slice.attribute("baker.slice", k);
+    slice.intAttributes = {{"baker.slice", k}};
+    slice.pixels = pixels.data();
     const std::string path = (std::filesystem::path(out.temporaryPath()) / sliceName(k)).string();
-    auto image = OIIO::ImageOutput::create("openexr");
-    if (!image || !image->open(path, slice) || !image->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) ||
-        !image->close())
-      throw InputError(fmt::format("{}: cannot write slice {}: {}", directory, k,
-                                   oneLine(image ? image->geterror() : OIIO::geterror())));
+    std::string error;
+    if (!writeImage(slice, path, &error))
+      throw InputError(fmt::format("{}: cannot write slice {}: {}", directory, k, error));
   }
   std::ofstream(std::filesystem::path(out.temporaryPath()) / kManifest) << manifest.dump(2) << "\n";
   out.commit();
@@ -192,22 +194,22 @@ Volume readExrSlices(const std::string& path) {
   std::vector<float> pixels;
   for (int k = 0; k < g.dims.z(); ++k) {
     const std::string slicePath = (dir / slices[k]).string();
-    const std::unique_ptr<OIIO::ImageInput> image = openSlice(dir, slices[k], k, g, manifestPath);
-    const OIIO::ImageSpec& spec = image->spec();
+    const std::unique_ptr<ImageReader> image = openSlice(dir, slices[k], k, g, manifestPath);
+    const ImageHeader& spec = image->header();
     std::vector<std::pair<int, std::pair<const VolumeGrid*, int>>> sources;  // channel index → grid component
     for (const VolumeGrid& grid : grids)
       for (int c = 0; c < grid.components; ++c) {
         const std::string name = componentName(grid, c);
-        const auto it = std::find(spec.channelnames.begin(), spec.channelnames.end(), name);
-        if (it == spec.channelnames.end()) throw InputError(fmt::format("{}: channel '{}' is missing", slicePath, name));
-        sources.push_back({int(it - spec.channelnames.begin()), {&grid, c}});
+        const auto it = std::find(spec.channelNames.begin(), spec.channelNames.end(), name);
+        if (it == spec.channelNames.end()) throw InputError(fmt::format("{}: channel '{}' is missing", slicePath, name));
+        sources.push_back({int(it - spec.channelNames.begin()), {&grid, c}});
       }
-    pixels.resize(std::size_t(spec.width) * spec.height * spec.nchannels);
-    if (!image->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()))
-      throw InputError(fmt::format("{}: cannot read the pixels: {}", slicePath, oneLine(image->geterror())));
+    pixels.resize(std::size_t(spec.width) * spec.height * spec.channels);
+    if (!image->readFloats(spec.channels, pixels.data()))
+      throw InputError(fmt::format("{}: cannot read the pixels: {}", slicePath, image->error()));
     for (int j = 0; j < g.dims.y(); ++j)
       for (int i = 0; i < g.dims.x(); ++i) {
-        const float* px = pixels.data() + (std::size_t(j) * g.dims.x() + i) * spec.nchannels;
+        const float* px = pixels.data() + (std::size_t(j) * g.dims.x() + i) * spec.channels;
         const std::int64_t p = g.linearIndex(i, j, k);
         for (const auto& [channel, target] : sources) {
           const auto& [grid, c] = target;

@@ -1,6 +1,5 @@
 #include "formats/RgbImage.h"
 
-#include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -9,15 +8,22 @@
 #include <filesystem>
 
 #include "common/Error.h"
+#include "images/ImageFiles.h"
 
 namespace baker {
 namespace {
 
-void write(const std::string& format, const OIIO::ImageSpec& spec, const void* data, const std::string& path) {
-  auto out = OIIO::ImageOutput::create(format);
-  if (!out) throw InputError(fmt::format("{}: cannot create a {} writer: {}", path, format, oneLine(OIIO::geterror())));
-  if (!out->open(path, spec) || !out->write_image(spec.format, data) || !out->close())
-    throw InputError(fmt::format("{}: cannot write: {}", path, oneLine(out->geterror())));
+void writeRgb(const std::string& format, const RgbImage& image, PixelType type, const void* pixels,
+              const std::string& path) {
+  ImageToWrite out;
+  out.format = format;
+  out.width = image.width;
+  out.height = image.height;
+  out.channelNames = {"R", "G", "B"};
+  out.pixelType = type;
+  out.pixels = pixels;
+  std::string error;
+  if (!writeImage(out, path, &error)) throw InputError(fmt::format("{}: cannot write: {}", path, error));
 }
 
 std::uint8_t srgbByte(double linear) {
@@ -31,10 +37,9 @@ std::uint8_t srgbByte(double linear) {
 RgbImage readRgbImage(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw InputError(fmt::format("{}: no such file", path));
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw InputError(fmt::format("{}: cannot read the image: {}", path, oneLine(OIIO::geterror())));
-  const OIIO::ImageSpec& spec = in->spec();
-  const int channels = spec.nchannels;
+  ImageReader in(path);
+  const ImageHeader& spec = in.header();
+  const int channels = spec.channels;
   if (channels != 1 && channels < 3)
     throw InputError(fmt::format("{}: expected RGB or grey, found {} channels", path, channels));
   if (spec.width <= 0 || spec.height <= 0 || spec.depth != 1)
@@ -45,8 +50,8 @@ RgbImage readRgbImage(const std::string& path) {
   if (double(spec.width) * spec.height > kMaxTexels)
     throw InputError(fmt::format("{}: {} × {} texels exceed the limit of 16384 × 8192", path, spec.width, spec.height));
   std::vector<float> source(std::size_t(spec.width) * spec.height * std::min(channels, 3));
-  if (!in->read_image(0, 0, 0, std::min(channels, 3), OIIO::TypeDesc::FLOAT, source.data()))
-    throw InputError(fmt::format("{}: cannot read the image: {}", path, oneLine(in->geterror())));
+  if (!in.readFloats(std::min(channels, 3), source.data()))
+    throw InputError(fmt::format("{}: cannot read the image: {}", path, in.error()));
   if (channels >= 3) {
     RgbImage image;
     image.width = spec.width;
@@ -60,13 +65,13 @@ RgbImage readRgbImage(const std::string& path) {
 }
 
 void writeExr(const RgbImage& image, const std::string& path) {
-  write("openexr", OIIO::ImageSpec(image.width, image.height, 3, OIIO::TypeDesc::FLOAT), image.pixels.data(), path);
+  writeRgb("openexr", image, PixelType::Float, image.pixels.data(), path);
 }
 
 void writeSrgbPng(const RgbImage& image, double exposure, const std::string& path) {
   std::vector<std::uint8_t> bytes(image.pixels.size());
   for (std::size_t k = 0; k < bytes.size(); ++k) bytes[k] = srgbByte(exposure * image.pixels[k]);
-  write("png", OIIO::ImageSpec(image.width, image.height, 3, OIIO::TypeDesc::UINT8), bytes.data(), path);
+  writeRgb("png", image, PixelType::Byte, bytes.data(), path);
 }
 
 }  // namespace baker

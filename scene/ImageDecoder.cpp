@@ -1,18 +1,17 @@
 #include "scene/ImageDecoder.h"
 
-#include <OpenImageIO/filesystem.h>
-#include <OpenImageIO/imageio.h>
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cstring>
 
 #include "common/Error.h"
+#include "images/ImageFiles.h"
 
 namespace baker {
 namespace {
 
-// OpenImageIO picks its reader from a file name's extension, and a glTF image in memory has
+// The image library picks its reader from a file name's extension, and a glTF image in memory has
 // none, so the name is chosen from the signature: glTF core allows exactly PNG and JPEG.
 const char* formatName(const std::vector<unsigned char>& bytes) {
   static const unsigned char png[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
@@ -46,34 +45,23 @@ std::vector<T> expandToRgba(const std::vector<T>& source, std::size_t texels, in
 ColorImage decodeColorImage(const std::vector<unsigned char>& encoded, const std::string& what) {
   const char* name = formatName(encoded);
   if (!name) throw InputError(fmt::format("{}: not a PNG or JPEG image", what));
-  OIIO::Filesystem::IOMemReader memory(encoded.data(), encoded.size());
-  // glTF alpha is straight (unassociated) coverage; OpenImageIO would otherwise premultiply
-  // colour by it while reading a PNG.
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);
-  // With a configuration, readers look for the proxy in it rather than in open()'s argument.
-  OIIO::Filesystem::IOProxy* proxy = &memory;
-  config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
-  auto in = OIIO::ImageInput::open(name, &config, &memory);
-  if (!in) throw InputError(fmt::format("{}: cannot decode: {}", what, oneLine(OIIO::geterror())));
-  const OIIO::ImageSpec& spec = in->spec();
+  ImageReader in(encoded.data(), encoded.size(), name, what);
+  const ImageHeader& spec = in.header();
   if (spec.width <= 0 || spec.height <= 0 || spec.depth != 1)
     throw InputError(fmt::format("{}: not a 2D image ({} × {} × {})", what, spec.width, spec.height, spec.depth));
   const long long texels = (long long)spec.width * spec.height;
   if (texels > kMaxTextureTexels)
     throw InputError(fmt::format("{}: {} × {} texels exceed the limit of {}", what, spec.width, spec.height,
                                  kMaxTextureTexels));
-  const int channels = std::min(spec.nchannels, 4);
-  if (spec.format == OIIO::TypeDesc::UINT8) {
+  const int channels = std::min(spec.channels, 4);
+  if (spec.storage == PixelType::Byte) {
     std::vector<std::uint8_t> source(std::size_t(texels) * channels);
-    if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::UINT8, source.data()))
-      throw InputError(fmt::format("{}: cannot decode: {}", what, oneLine(in->geterror())));
+    if (!in.readBytes(channels, source.data())) throw InputError(fmt::format("{}: cannot decode: {}", what, in.error()));
     return ColorImage::fromBytes(spec.width, spec.height, expandToRgba<std::uint8_t>(source, texels, channels, 255));
   }
   // 16-bit PNGs: normalised values, still sRGB-encoded in RGB.
   std::vector<float> source(std::size_t(texels) * channels);
-  if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, source.data()))
-    throw InputError(fmt::format("{}: cannot decode: {}", what, oneLine(in->geterror())));
+  if (!in.readFloats(channels, source.data())) throw InputError(fmt::format("{}: cannot decode: {}", what, in.error()));
   std::vector<float> rgba = expandToRgba<float>(source, texels, channels, 1.0f);
   for (std::size_t k = 0; k < rgba.size(); ++k)
     if (k % 4 != 3) rgba[k] = srgbToLinear(std::clamp(rgba[k], 0.0f, 1.0f));
