@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <stdexcept>
 
@@ -15,11 +16,13 @@ namespace {
 constexpr const char* kModuleFile = "libbaker_images.so";
 
 // Where the module may be: the one $BAKER_IMAGE_MODULE names, else beside the running
-// executable (an installed or copied baker keeps it there), then the build tree's.
+// executable (an installed or copied baker keeps it there), then the build tree's. Absolute,
+// so that dlopen loads the file that was checked rather than searching its library path.
 std::vector<std::string> moduleCandidates() {
-  if (const char* chosen = std::getenv("BAKER_IMAGE_MODULE"); chosen && *chosen) return {chosen};
-  std::vector<std::string> candidates;
   std::error_code ec;
+  if (const char* chosen = std::getenv("BAKER_IMAGE_MODULE"); chosen && *chosen)
+    return {std::filesystem::absolute(chosen, ec).string()};
+  std::vector<std::string> candidates;
   const std::filesystem::path executable = std::filesystem::read_symlink("/proc/self/exe", ec);
   if (!ec) candidates.push_back((executable.parent_path() / kModuleFile).string());
   const std::string built = (std::filesystem::path(BAKER_IMAGE_MODULE_DIR) / kModuleFile).string();
@@ -39,12 +42,13 @@ const ImageModuleFunctions& loadModule() {
     if (!library) throw std::runtime_error(fmt::format("{}: cannot load baker's image module: {}", path, oneLine(dlerror())));
     using Entry = const ImageModuleFunctions* (*)();
     const auto entry = reinterpret_cast<Entry>(dlsym(library, kImageModuleEntry));
-    if (!entry) throw std::runtime_error(fmt::format("{}: not baker's image module (it has no {})", path, kImageModuleEntry));
-    const ImageModuleFunctions* functions = entry();
-    if (functions->abi != kImageModuleAbi)
-      throw std::runtime_error(fmt::format("{}: image module of another baker build (interface {}, this baker needs {}): "
-                                           "rebuild the baker_images target",
-                                           path, functions->abi, kImageModuleAbi));
+    const ImageModuleFunctions* functions = entry ? entry() : nullptr;
+    if (!functions || !functions->interface || std::strcmp(functions->interface, BAKER_IMAGE_INTERFACE) != 0) {
+      dlclose(library);
+      throw std::runtime_error(fmt::format("{}: not the image module of this baker build ({}): rebuild the "
+                                           "baker_images target, or point BAKER_IMAGE_MODULE at this build's",
+                                           path, entry ? "its interface differs" : "it has no " + std::string(kImageModuleEntry)));
+    }
     return *functions;
   }
   throw std::runtime_error(fmt::format("baker's image module {} is missing (looked for {}); textures, environment maps, "

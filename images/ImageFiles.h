@@ -10,8 +10,8 @@ namespace baker {
 // needs an image (a texture, an environment map, an EXR volume, a preview). Linked into the
 // executable, OpenImageIO's 260 shared libraries cost every process about 0.13 s and 100 MB
 // before main, whether it reads an image or not. They live behind the module libbaker_images.so
-// instead, built beside `baker` and found (in this order) at $BAKER_IMAGE_MODULE, beside the
-// running executable, or in the build tree it came from.
+// instead, built beside `baker`. It is loaded from $BAKER_IMAGE_MODULE when that is set, else
+// from beside the running executable or, failing that, from the build tree it came from.
 
 // Loads the module now, so that a command that will need it fails before its work rather than
 // after it (std::runtime_error saying where it looked). Every function below loads it too.
@@ -23,7 +23,7 @@ enum class PixelType { Byte, Half, Float };
 struct ImageHeader {
   int width = 0, height = 0, depth = 0;
   int channels = 0;
-  PixelType storage = PixelType::Float;  // of its pixels (the first channel's, where they differ)
+  PixelType storage = PixelType::Float;  // of its pixels (the most precise channel's, where they differ)
   std::vector<std::string> channelNames;
 };
 
@@ -73,10 +73,11 @@ struct ImageToWrite {
 bool writeImage(const ImageToWrite& image, const std::string& path, std::string* error);
 
 // The functions the module exports, through one entry point (kImageModuleEntry) returning them.
-// The ABI number changes with this table, so that a module left over from another build is
-// refused rather than called wrongly.
+// `interface` comes first and stays first: it is a hash of this header, compiled into both
+// sides (BAKER_IMAGE_INTERFACE), so that a module built from another version of it, whose
+// structures may differ, is refused rather than called wrongly.
 struct ImageModuleFunctions {
-  int abi;
+  const char* interface;
   void* (*openFile)(const std::string& path, ImageHeader* header, std::string* error);
   void* (*openMemory)(const unsigned char* bytes, std::size_t size, const std::string& name, ImageHeader* header,
                       std::string* error);
@@ -86,7 +87,6 @@ struct ImageModuleFunctions {
   void (*close)(void* reader);
   bool (*write)(const ImageToWrite& image, const std::string& path, std::string* error);
 };
-constexpr int kImageModuleAbi = 1;
 constexpr const char* kImageModuleEntry = "baker_image_module_functions";
 
 }  // namespace baker

@@ -27,6 +27,7 @@ OIIO::TypeDesc typeOf(PixelType type) {
 struct OpenImage {
   std::unique_ptr<OIIO::Filesystem::IOMemReader> memory;  // what a reader in memory reads from
   std::unique_ptr<OIIO::ImageInput> input;
+  std::string failure;  // what an exception said, which the input's own error does not hold
 };
 
 void* opened(std::unique_ptr<OpenImage> image, ImageHeader* header, std::string* error) {
@@ -78,23 +79,40 @@ void* openMemory(const unsigned char* bytes, std::size_t size, const std::string
 }
 
 int intAttribute(void* reader, const std::string& name, int fallback) {
-  return static_cast<OpenImage*>(reader)->input->spec().get_int_attribute(name, fallback);
+  try {
+    return static_cast<OpenImage*>(reader)->input->spec().get_int_attribute(name, fallback);
+  } catch (const std::exception&) {
+    return fallback;
+  }
 }
 
 bool read(void* reader, int channels, PixelType type, void* out) {
+  OpenImage& image = *static_cast<OpenImage*>(reader);
   try {
-    return static_cast<OpenImage*>(reader)->input->read_image(0, 0, 0, channels, typeOf(type), out);
-  } catch (const std::exception&) {
+    return image.input->read_image(0, 0, 0, channels, typeOf(type), out);
+  } catch (const std::exception& e) {
+    image.failure = e.what();
     return false;
   }
 }
 
-std::string error(void* reader) { return static_cast<OpenImage*>(reader)->input->geterror(); }
+std::string error(void* reader) {
+  OpenImage& image = *static_cast<OpenImage*>(reader);
+  try {
+    return image.failure.empty() ? image.input->geterror() : image.failure;
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+}
 
 void close(void* reader) { delete static_cast<OpenImage*>(reader); }
 
 bool write(const ImageToWrite& image, const std::string& path, std::string* error) {
   try {
+    if (!image.channelStorage.empty() && image.channelStorage.size() != image.channelNames.size()) {
+      *error = "a storage type is needed for every channel";
+      return false;
+    }
     OIIO::ImageSpec spec(image.width, image.height, int(image.channelNames.size()), typeOf(image.pixelType));
     spec.channelnames = image.channelNames;
     for (PixelType storage : image.channelStorage) spec.channelformats.push_back(typeOf(storage));
@@ -119,7 +137,7 @@ bool write(const ImageToWrite& image, const std::string& path, std::string* erro
   }
 }
 
-const ImageModuleFunctions kFunctions{kImageModuleAbi, openFile, openMemory, intAttribute, read, error, close, write};
+const ImageModuleFunctions kFunctions{BAKER_IMAGE_INTERFACE, openFile, openMemory, intAttribute, read, error, close, write};
 
 }  // namespace
 }  // namespace baker

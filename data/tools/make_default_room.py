@@ -46,11 +46,10 @@ def box(x0, x1, y0, y1, z0, z1):
     return faces
 
 
-def main():
-    out_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..", "default_room")
+def room_parts():
+    """The room as (material index, list of quads) pairs; room walls face inwards."""
     hw, d, h = WIDTH / 2, DEPTH, HEIGHT
-    # Each entry: material index, list of quads. Room walls face inwards.
-    parts = [
+    return [
         (0, [quad((-hw, 0, 0), (-hw, 0, d), (hw, 0, d), (hw, 0, 0)),          # floor, +Y
              quad((-hw, h, 0), (hw, h, 0), (hw, h, d), (-hw, h, d)),          # ceiling, -Y
              quad((-hw, 0, 0), (hw, 0, 0), (hw, h, 0), (-hw, h, 0))]          # back wall, +Z
@@ -61,6 +60,10 @@ def main():
         (3, [quad((-0.5, h - 0.01, 1.5), (0.5, h - 0.01, 1.5), (0.5, h - 0.01, 2.5), (-0.5, h - 0.01, 2.5))]),  # panel, -Y
     ]
 
+
+def write_scene(out_dir, name, parts, generator, extras):
+    """Writes OUT_DIR/NAME.gltf and NAME.bin: one mesh, a primitive per (material, pieces) part,
+    where each piece is (vertices, normals, indices) with indices local to the piece."""
     blob = bytearray()
     buffer_views, accessors, primitives = [], [], []
 
@@ -71,29 +74,31 @@ def main():
         blob.extend(data)
         return len(buffer_views) - 1
 
-    for material, quads in parts:
+    for material, pieces in parts:
         positions, normals, indices = [], [], []
-        for verts, norms, idx in quads:
+        for verts, norms, idx in pieces:
             base = len(positions)
             positions += verts
             normals += norms
             indices += [base + i for i in idx]
+        wide = len(positions) > 65535
         pos_view = add_view(b"".join(struct.pack("<3f", *p) for p in positions), 34962)
         nrm_view = add_view(b"".join(struct.pack("<3f", *n) for n in normals), 34962)
-        idx_view = add_view(b"".join(struct.pack("<H", i) for i in indices), 34963)
+        idx_view = add_view(b"".join(struct.pack("<I" if wide else "<H", i) for i in indices), 34963)
         lo = [min(p[i] for p in positions) for i in range(3)]
         hi = [max(p[i] for p in positions) for i in range(3)]
         accessors.append({"bufferView": pos_view, "componentType": 5126, "count": len(positions), "type": "VEC3",
                           "min": lo, "max": hi})
         accessors.append({"bufferView": nrm_view, "componentType": 5126, "count": len(normals), "type": "VEC3"})
-        accessors.append({"bufferView": idx_view, "componentType": 5123, "count": len(indices), "type": "SCALAR"})
+        accessors.append({"bufferView": idx_view, "componentType": 5125 if wide else 5123, "count": len(indices),
+                          "type": "SCALAR"})
         n = len(accessors)
         primitives.append({"attributes": {"POSITION": n - 3, "NORMAL": n - 2}, "indices": n - 1,
                            "material": material, "mode": 4})
 
     materials = []
-    for name, albedo, emission, strength in MATERIALS:
-        m = {"name": name, "doubleSided": True,
+    for material_name, albedo, emission, strength in MATERIALS:
+        m = {"name": material_name, "doubleSided": True,
              "pbrMetallicRoughness": {"baseColorFactor": list(albedo) + [1.0], "metallicFactor": 0.0,
                                       "roughnessFactor": 1.0}}
         if emission:
@@ -102,24 +107,29 @@ def main():
         materials.append(m)
 
     gltf = {
-        "asset": {"version": "2.0", "generator": "baker data/tools/make_default_room.py"},
+        "asset": {"version": "2.0", "generator": generator},
         "extensionsUsed": ["KHR_materials_emissive_strength"],
         "scene": 0,
-        "scenes": [{"name": "default_room", "nodes": [0],
-                    "extras": {"probe_hint": [[0.0, 1.5, 2.0], [0.0, 0.5, 3.5], [1.5, 2.5, 0.5]]}}],
+        "scenes": [{"name": name, "nodes": [0], "extras": extras}],
         "nodes": [{"name": "room", "mesh": 0}],
         "meshes": [{"name": "room", "primitives": primitives}],
         "materials": materials,
         "accessors": accessors,
         "bufferViews": buffer_views,
-        "buffers": [{"uri": "default_room.bin", "byteLength": len(blob)}],
+        "buffers": [{"uri": name + ".bin", "byteLength": len(blob)}],
     }
     os.makedirs(out_dir, exist_ok=True)
-    with open(os.path.join(out_dir, "default_room.bin"), "wb") as f:
+    with open(os.path.join(out_dir, name + ".bin"), "wb") as f:
         f.write(bytes(blob))
-    with open(os.path.join(out_dir, "default_room.gltf"), "w") as f:
+    with open(os.path.join(out_dir, name + ".gltf"), "w") as f:
         json.dump(gltf, f, indent=1)
         f.write("\n")
+
+
+def main():
+    out_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..", "default_room")
+    write_scene(out_dir, "default_room", room_parts(), "baker data/tools/make_default_room.py",
+                {"probe_hint": [[0.0, 1.5, 2.0], [0.0, 0.5, 3.5], [1.5, 2.5, 0.5]]})
 
 
 if __name__ == "__main__":
