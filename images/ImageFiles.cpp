@@ -39,17 +39,18 @@ const ImageModuleFunctions& loadModule() {
       continue;
     }
     void* library = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-    if (!library) throw std::runtime_error(fmt::format("{}: cannot load baker's image module: {}", path, oneLine(dlerror())));
+    if (!library)
+      throw std::runtime_error(fmt::format("{}: cannot load baker's image module: {}", path, oneLine(dlerror())));
     using Entry = const ImageModuleFunctions* (*)();
     const auto entry = reinterpret_cast<Entry>(dlsym(library, kImageModuleEntry));
     const ImageModuleFunctions* functions = entry ? entry() : nullptr;
-    if (!functions || !functions->interface || std::strcmp(functions->interface, BAKER_IMAGE_INTERFACE) != 0) {
-      dlclose(library);
-      throw std::runtime_error(fmt::format("{}: not the image module of this baker build ({}): rebuild the "
-                                           "baker_images target, or point BAKER_IMAGE_MODULE at this build's",
-                                           path, entry ? "its interface differs" : "it has no " + std::string(kImageModuleEntry)));
-    }
-    return *functions;
+    if (functions && functions->interface && std::strcmp(functions->interface, BAKER_IMAGE_INTERFACE) == 0)
+      return *functions;
+    dlclose(library);
+    const std::string why = entry ? "its interface differs" : fmt::format("it has no {}", kImageModuleEntry);
+    throw std::runtime_error(fmt::format("{}: not the image module of this baker build ({}): rebuild the baker_images "
+                                         "target, or point BAKER_IMAGE_MODULE at this build's",
+                                         path, why));
   }
   throw std::runtime_error(fmt::format("baker's image module {} is missing (looked for {}); textures, environment maps, "
                                        "EXR volumes and previews need it: build the target baker_images, or set "
