@@ -26,40 +26,66 @@ float powerHeuristic(float pdf, float otherPdf) {
   return a + b > 0.0f ? a / (a + b) : 0.0f;
 }
 
+// The straight-line arithmetic of a path step (directions, shadow-ray geometry, MIS weights) is
+// done for this many paths at once, in Eigen fixed-size arrays that compile to vector registers.
+// Every path goes through the same lane code (a short last block is padded), and a lane's
+// operations are those of one path written out in floats (sums of three in the order of
+// Eigen's Vector3f, correctly rounded square roots), so a path's result does not depend on its
+// lane or block: volumes stay bit-identical at any thread count. Branches, table lookups and
+// random draws stay scalar, around the lanes.
+constexpr int kLanes = 8;
+using Lanes = Eigen::Array<float, kLanes, 1>;
+
+// Correctly rounded square roots, as std::sqrt gives (this file is built without errno for
+// math functions, so the loop becomes a vector square root): Eigen's packet sqrt is by default
+// an approximate reciprocal root and one Newton step, a few ulps off.
+Lanes exactSqrt(const Lanes& x) {
+  Lanes root;
+  for (int j = 0; j < kLanes; ++j) root[j] = std::sqrt(x[j]);
+  return root;
+}
+
 // cos(2πt) and sin(2πt) for t in [0, 1), to a few float ulps: the angle is reduced to an eighth
 // of a turn, where short Taylor polynomials suffice, then turned by the quarter turns taken off.
 // The library's sincos costs several times as much, and a path needs one per bounce.
-void cosSinTurns(float t, float* cosine, float* sine) {
-  const float quarters = float(int(4.0f * t + 0.5f));  // the nearest quarter turn, 0 to 4
-  const float x = 2.0f * kPi * (t - 0.25f * quarters);  // within ±π/4
-  const float x2 = x * x;
-  const float s = x * (1.0f + x2 * (-1.0f / 6 + x2 * (1.0f / 120 + x2 * (-1.0f / 5040 + x2 * (1.0f / 362880)))));
-  const float c = 1.0f + x2 * (-0.5f + x2 * (1.0f / 24 + x2 * (-1.0f / 720 + x2 * (1.0f / 40320))));
+void cosSinTurns(const Lanes& t, Lanes* cosine, Lanes* sine) {
+  const Lanes quarters = (4.0f * t + 0.5f).cast<int>().cast<float>();  // the nearest quarter turn, 0 to 4
+  const Lanes x = 2.0f * kPi * (t - 0.25f * quarters);                    // within ±π/4
+  const Lanes x2 = x * x;
+  const Lanes s = x * (1.0f + x2 * (-1.0f / 6 + x2 * (1.0f / 120 + x2 * (-1.0f / 5040 + x2 * (1.0f / 362880)))));
+  const Lanes c = 1.0f + x2 * (-0.5f + x2 * (1.0f / 24 + x2 * (-1.0f / 720 + x2 * (1.0f / 40320))));
   // Turned by q quarter turns, (c, s) becomes (turned[q], turned[q + 3]) with indices mod 4:
   // a lookup rather than a switch, whose random branch would be mispredicted three times in four.
-  const float turned[4] = {c, -s, -c, s};
-  const int q = int(quarters) & 3;
-  *cosine = turned[q];
-  *sine = turned[(q + 3) & 3];
+  for (int j = 0; j < kLanes; ++j) {
+    const float turned[4] = {c[j], -s[j], -c[j], s[j]};
+    const int q = int(quarters[j]) & 3;
+    (*cosine)[j] = turned[q];
+    (*sine)[j] = turned[(q + 3) & 3];
+  }
 }
 
-// A cosine-distributed direction about `normal` (pdf cosθ/π), through an orthonormal frame
-// that has no singularity (Duff et al. 2017). The frame of a unit normal is orthonormal, so the
-// direction is unit to float rounding and is not normalised again; its cosine with the normal
-// is the sampled √(1 − ξ1), set in *cosine.
-Eigen::Vector3f cosineDirection(const Eigen::Vector3f& normal, float xi1, float xi2, float* cosine) {
-  const float nx = normal.x(), ny = normal.y(), nz = normal.z();
-  const float sign = std::copysign(1.0f, nz);
-  const float a = -1.0f / (sign + nz);
-  const float b = nx * ny * a;
-  float cosPhi, sinPhi;
+// Cosine-distributed directions about unit normals (pdf cosθ/π), through an orthonormal frame
+// that has no singularity (Duff et al. 2017). The frame of a unit normal is orthonormal, so a
+// direction is unit to float rounding and is not normalised again. Its cosine with the normal
+// is the sampled √(1 − ξ1): ξ1 ≤ 1 − 2⁻²⁴ (PathRandom), so the cosine, and the pdf, are never 0.
+struct CosineDirections {
+  Lanes x, y, z, cosine;
+};
+CosineDirections cosineDirections(const Lanes& nx, const Lanes& ny, const Lanes& nz, const Lanes& xi1,
+                                  const Lanes& xi2) {
+  // copysign, not Eigen's sign(), which is 0 at ±0, where the frame needs ±1: a flipped wall
+  // normal has z = −0.
+  Lanes sign;
+  for (int j = 0; j < kLanes; ++j) sign[j] = std::copysign(1.0f, nz[j]);
+  const Lanes a = -1.0f / (sign + nz);
+  const Lanes b = nx * ny * a;
+  Lanes cosPhi, sinPhi;
   cosSinTurns(xi2, &cosPhi, &sinPhi);
-  const float r = std::sqrt(xi1);
-  const float x = r * cosPhi, y = r * sinPhi, z = std::sqrt(std::max(0.0f, 1.0f - xi1));
-  *cosine = z;
+  const Lanes r = exactSqrt(xi1);
+  const Lanes x = r * cosPhi, y = r * sinPhi, z = exactSqrt(1.0f - xi1);
   // x·t + y·s + z·n with t = (1 + sign·nx²·a, sign·b, −sign·nx) and s = (b, sign + ny²·a, −ny).
   return {x * (1.0f + sign * nx * nx * a) + y * b + z * nx, x * sign * b + y * (sign + ny * ny * a) + z * ny,
-          -x * sign * nx - y * ny + z * nz};
+          -x * sign * nx - y * ny + z * nz, z};
 }
 
 // A float's spacing to the next larger one, for positive finite normal values: nextafter
@@ -261,31 +287,51 @@ void PathIntegrator::addNextEvents(Vertex* vertices, int count, Scratch& scratch
         prefetchSurface(surfaces[k]);
       }
     }
-    for (int k = 0; k < count; ++k) {
-      const Vertex& v = *points[k].vertex;
-      const EmitterSampler::Sample& s = points[k].sample;
-      const EmitterSampler::Emitter& e = *s.emitter;
-      const Eigen::Vector3f d = s.point - v.origin;
-      const float squaredDistance = d.squaredNorm(), distance = std::sqrt(squaredDistance);
-      if (!(distance > 0.0f)) continue;
-      const Eigen::Vector3f toLight = d * (1.0f / distance);
-      const float cosine = v.normal.dot(toLight);
-      if (cosine <= 0.0f) continue;
-      const float cosLight = -e.frontNormal.dot(toLight);
-      if (std::abs(cosLight) < 1e-6f || (cosLight < 0.0f && !e.doubleSided)) continue;
-      if (settings_.alphaFilters && e.alphaTested && !surfaceStopsRay(surfaces[k], points[k].xiCoverage))
-        continue;  // a transparent texel
+    for (int first = 0; first < count; first += kLanes) {
+      const int n = std::min(kLanes, count - first);
+      // The geometry of each vertex's shadow ray, in lanes. Lanes past the last vertex repeat
+      // it (nothing is drawn here); what they compute is not read.
+      Lanes dx, dy, dz, nx, ny, nz, fx, fy, fz, pdfArea;
+      for (int j = 0; j < kLanes; ++j) {
+        const Scratch::EmitterPoint& point = points[first + std::min(j, n - 1)];
+        const Vertex& v = *point.vertex;
+        const EmitterSampler::Emitter& e = *point.sample.emitter;
+        dx[j] = point.sample.point.x() - v.origin.x();
+        dy[j] = point.sample.point.y() - v.origin.y();
+        dz[j] = point.sample.point.z() - v.origin.z();
+        nx[j] = v.normal.x(), ny[j] = v.normal.y(), nz[j] = v.normal.z();
+        fx[j] = e.frontNormal.x(), fy[j] = e.frontNormal.y(), fz[j] = e.frontNormal.z();
+        pdfArea[j] = e.pdfArea;
+      }
+      // Sums of three terms as Eigen's Vector3f squaredNorm and dot add them (its unrolled
+      // reduction splits three as one and two): x + (y + z).
+      const Lanes squaredDistance = dx * dx + (dy * dy + dz * dz);
+      const Lanes distance = exactSqrt(squaredDistance);
+      const Lanes inverse = 1.0f / distance;
+      const Lanes tx = dx * inverse, ty = dy * inverse, tz = dz * inverse;
+      const Lanes cosine = nx * tx + (ny * ty + nz * tz);
+      const Lanes cosLight = -(fx * tx + (fy * ty + fz * tz));
       // The power heuristic's weight over the light's solid-angle pdf, in one division:
       // with pdfLight = a/c (a = pdfArea·r², c = |cosθ_light|) and the BSDF's b = cosθ/π,
       // (pdfLight² / (pdfLight² + b²)) / pdfLight = a·c / (a² + b²·c²).
-      const float a = e.pdfArea * squaredDistance, c = std::abs(cosLight), b = cosine * kInvPi;
-      const float weightOverPdf = a * c / (a * a + b * b * c * c);
-      const Eigen::Vector3f emission = e.textured ? surfaceEmission(surfaces[k]) : e.emission;
-      const Eigen::Vector3f contribution =
-          v.throughput.cwiseProduct(v.albedo).cwiseProduct(emission) * (kInvPi * cosine * weightOverPdf);
-      if (!(contribution.maxCoeff() > 0.0f) || !contribution.allFinite()) continue;
-      rays[shadowRays] = {v.origin, toLight, 0.0f, distance * (1.0f - kShadowShortening)};
-      pending[shadowRays++] = {v.path, contribution};
+      const Lanes a = pdfArea * squaredDistance, c = cosLight.abs(), b = cosine * kInvPi;
+      const Lanes weightOverPdf = a * c / (a * a + b * b * c * c);
+      const Lanes reflected = kInvPi * cosine * weightOverPdf;
+      for (int j = 0; j < n; ++j) {
+        const int k = first + j;
+        const Vertex& v = *points[k].vertex;
+        const EmitterSampler::Emitter& e = *points[k].sample.emitter;
+        if (!(distance[j] > 0.0f) || cosine[j] <= 0.0f) continue;
+        if (std::abs(cosLight[j]) < 1e-6f || (cosLight[j] < 0.0f && !e.doubleSided)) continue;
+        if (settings_.alphaFilters && e.alphaTested && !surfaceStopsRay(surfaces[k], points[k].xiCoverage))
+          continue;  // a transparent texel
+        const Eigen::Vector3f emission = e.textured ? surfaceEmission(surfaces[k]) : e.emission;
+        const Eigen::Vector3f contribution =
+            v.throughput.cwiseProduct(v.albedo).cwiseProduct(emission) * reflected[j];
+        if (!(contribution.maxCoeff() > 0.0f) || !contribution.allFinite()) continue;
+        rays[shadowRays] = {v.origin, {tx[j], ty[j], tz[j]}, 0.0f, distance[j] * (1.0f - kShadowShortening)};
+        pending[shadowRays++] = {v.path, contribution};
+      }
     }
     resolve(&counts->emitterShadow);
   }
@@ -317,23 +363,35 @@ int PathIntegrator::continuePaths(Vertex* vertices, int count, bool keepVertices
   // The paths that go on are compacted in place (vertex k traces rays[k]), and so are the
   // vertices their rays make: a vertex is written only over one already read.
   int survivors = 0;
-  for (int k = 0; k < count; ++k) {
-    Vertex& v = vertices[k];
-    const float xi1 = v.random.uniform(), xi2 = v.random.uniform();
-    float cosine;
-    const Eigen::Vector3f direction = cosineDirection(v.normal, xi1, xi2, &cosine);
-    if (!(cosine > 0.0f)) continue;
-    v.throughput = v.throughput.cwiseProduct(v.albedo);  // (ρ/π)·cosθ over the pdf cosθ/π
-    const float weight = v.throughput.maxCoeff();
-    if (weight < kRouletteThreshold) {
-      const float survival = weight / kRouletteThreshold;
-      if (v.random.uniform() >= survival) continue;
-      v.throughput /= survival;
+  for (int first = 0; first < count; first += kLanes) {
+    const int n = std::min(kLanes, count - first);
+    // Lanes past the last path get constants, not a copy of it: filling a lane draws the path's
+    // random numbers. Their directions are not read.
+    Lanes nx = Lanes::Zero(), ny = Lanes::Zero(), nz = Lanes::Ones();
+    Lanes xi1 = Lanes::Zero(), xi2 = Lanes::Zero();
+    for (int j = 0; j < n; ++j) {
+      Vertex& v = vertices[first + j];
+      nx[j] = v.normal.x(), ny[j] = v.normal.y(), nz[j] = v.normal.z();
+      xi1[j] = v.random.uniform();
+      xi2[j] = v.random.uniform();
     }
-    rays[survivors] = {v.origin, direction, 0.0f, std::numeric_limits<float>::infinity()};
-    bsdfPdf[survivors] = cosine * kInvPi;
-    if (survivors != k) vertices[survivors] = v;
-    ++survivors;
+    const CosineDirections directions = cosineDirections(nx, ny, nz, xi1, xi2);
+    for (int j = 0; j < n; ++j) {
+      const int k = first + j;
+      Vertex& v = vertices[k];
+      v.throughput = v.throughput.cwiseProduct(v.albedo);  // (ρ/π)·cosθ over the pdf cosθ/π
+      const float weight = v.throughput.maxCoeff();
+      if (weight < kRouletteThreshold) {
+        const float survival = weight / kRouletteThreshold;
+        if (v.random.uniform() >= survival) continue;
+        v.throughput /= survival;
+      }
+      rays[survivors] = {v.origin, {directions.x[j], directions.y[j], directions.z[j]}, 0.0f,
+                         std::numeric_limits<float>::infinity()};
+      bsdfPdf[survivors] = directions.cosine[j] * kInvPi;
+      if (survivors != k) vertices[survivors] = v;
+      ++survivors;
+    }
   }
 
   const Environment& sky = scene_.environment;

@@ -23,7 +23,8 @@ struct SurfacePoint;
 // turn off costs no rays at all.
 //
 // Work is a wavefront per probe: closest hits go to Embree eight at a time (rtcIntersect8),
-// shadow rays of one bounce as one stream (rtcOccluded1M).
+// shadow rays of one bounce as one stream (rtcOccluded1M), and the arithmetic of continuing
+// paths and of their emitter samples is done eight paths at a time in SIMD lanes.
 class PathIntegrator {
  public:
   PathIntegrator(const Scene& scene, const RayTracer& tracer, const TransportSettings& settings);
