@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstring>
 #include <stdexcept>
 
@@ -61,6 +62,14 @@ void alphaFilter(const RTCFilterFunctionNArguments* args) {
                          RTCHitN_v(args->hit, args->N, i), xi))
       args->valid[i] = 0;
   }
+}
+
+template <typename EmbreeCall>
+void timedEmbreeCall(double* seconds, EmbreeCall call) {
+  if (!seconds) return call();
+  const auto start = std::chrono::steady_clock::now();
+  call();
+  *seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace
@@ -202,7 +211,7 @@ void RayTracer::intersect8(const Ray* rays, int count, Hit* hits) const {
   }
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  rtcIntersect8(valid, rtcScene_, &context, &packet);
+  timedEmbreeCall(embreeSeconds_, [&] { rtcIntersect8(valid, rtcScene_, &context, &packet); });
   for (int i = 0; i < count; ++i)
     hits[i] = packet.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID
                   ? Hit{}
@@ -238,7 +247,7 @@ void RayTracer::occluded(const Ray* rays, int count, bool* blocked) const {
       ray.id = unsigned(k);
       ray.flags = 0;
     }
-    rtcOccluded1M(rtcScene_, &context, stream, unsigned(n), sizeof(RTCRay));
+    timedEmbreeCall(embreeSeconds_, [&] { rtcOccluded1M(rtcScene_, &context, stream, unsigned(n), sizeof(RTCRay)); });
     // Embree marks an occluded ray by setting its tfar to −∞.
     for (int k = 0; k < n; ++k) blocked[first + k] = stream[k].tfar == -std::numeric_limits<float>::infinity();
   }

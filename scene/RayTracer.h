@@ -65,6 +65,10 @@ class RayTracer {
     std::vector<int> streamSizes;
   };
   void record(RayLog* log) { log_ = log; }
+  // Adds the time of every Embree call from now on (a clock read on either side of it) to
+  // *seconds: a benchmark times Embree inside a bake and replaying its rays alike, to see
+  // whether shading slows Embree down. Single-threaded use only; null stops.
+  void timeEmbreeCalls(double* seconds) { embreeSeconds_ = seconds; }
 
   int instancedMeshes() const { return instancedMeshes_; }    // meshes built once and instanced
   int filteredGeometries() const { return filteredGeometries_; }  // geometries with alpha filters
@@ -95,6 +99,7 @@ class RayTracer {
   int instancedMeshes_ = 0;
   int filteredGeometries_ = 0;
   RayLog* log_ = nullptr;
+  double* embreeSeconds_ = nullptr;
 };
 
 }  // namespace baker

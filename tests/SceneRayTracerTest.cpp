@@ -142,5 +142,64 @@ TEST_F(SceneRayTracer, OpaqueScenesCarryNoFilters) {
   EXPECT_EQ(tracer.instancedMeshes(), 0);
 }
 
+// bench_bake's hooks: recording a bake's rays and timing Embree's calls must change no result,
+// the log must hold every ray in the calls that traced it, and the clock must run only while on.
+TEST_F(SceneRayTracer, RecordingAndTimingTracesChangeNoResult) {
+  GltfBuilder gltf;
+  const Scene scene = maskedScene(gltf, dir_);
+  RayTracer tracer(scene);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  std::vector<Ray> rays(21);
+  for (Ray& r : rays) {
+    r.origin = Eigen::Vector3f(1 + u(rng), 1 + u(rng), 0.5f + u(rng));
+    r.direction = Eigen::Vector3f(u(rng), u(rng), u(rng) - 1.5f).normalized();
+    r.tfar = 2.0f + u(rng);
+  }
+  auto traceAll = [&](std::vector<Hit>* hits, std::vector<char>* blocked) {
+    hits->assign(rays.size(), Hit{});
+    for (std::size_t first = 0; first < rays.size(); first += 8)
+      tracer.intersect8(rays.data() + first, int(std::min<std::size_t>(8, rays.size() - first)), hits->data() + first);
+    std::unique_ptr<bool[]> flags(new bool[rays.size()]);
+    tracer.occluded(rays.data(), int(rays.size()), flags.get());
+    blocked->assign(flags.get(), flags.get() + rays.size());
+  };
+  std::vector<Hit> plainHits, watchedHits;
+  std::vector<char> plainBlocked, watchedBlocked;
+  traceAll(&plainHits, &plainBlocked);
+
+  RayTracer::RayLog log;
+  double seconds = 0.0;
+  tracer.record(&log);
+  tracer.timeEmbreeCalls(&seconds);
+  traceAll(&watchedHits, &watchedBlocked);
+  tracer.record(nullptr);
+  tracer.timeEmbreeCalls(nullptr);
+
+  int hitCount = 0;
+  for (std::size_t k = 0; k < rays.size(); ++k) {
+    EXPECT_EQ(watchedHits[k].triangle, plainHits[k].triangle) << "ray " << k;
+    EXPECT_EQ(watchedHits[k].instance, plainHits[k].instance) << "ray " << k;
+    EXPECT_EQ(watchedHits[k].distance, plainHits[k].distance) << "ray " << k;
+    EXPECT_EQ(watchedBlocked[k], plainBlocked[k]) << "ray " << k;
+    hitCount += !plainHits[k].missed();
+  }
+  EXPECT_GT(hitCount, 0);
+  EXPECT_LT(hitCount, int(rays.size())) << "the rays should both hit and miss";
+  EXPECT_EQ(log.packetSizes, (std::vector<int>{8, 8, 5}));
+  EXPECT_EQ(log.streamSizes, (std::vector<int>{21}));
+  ASSERT_EQ(log.closest.size(), rays.size());
+  ASSERT_EQ(log.occlusion.size(), rays.size());
+  for (std::size_t k = 0; k < rays.size(); ++k) {
+    EXPECT_EQ(log.closest[k].direction, rays[k].direction);
+    EXPECT_EQ(log.occlusion[k].tfar, rays[k].tfar);
+  }
+  EXPECT_GT(seconds, 0.0);
+  const double stopped = seconds;
+  traceAll(&watchedHits, &watchedBlocked);
+  EXPECT_EQ(seconds, stopped) << "the clock ran after it was stopped";
+  EXPECT_EQ(log.closest.size(), rays.size()) << "rays were recorded after recording stopped";
+}
+
 }  // namespace
 }  // namespace baker

@@ -9,11 +9,11 @@ roughness 1, doubleSided) so every renderer agrees on what it means.
 Usage: python3 data/tools/make_default_room.py [OUT_DIR]   (default: data/default_room)
 Only the standard library is used, and the output is byte-for-byte reproducible.
 """
+import argparse
 import json
 import math
 import os
 import struct
-import sys
 
 WIDTH, HEIGHT, DEPTH = 4.0, 3.0, 4.0
 MATERIALS = [
@@ -127,7 +127,10 @@ def write_scene(out_dir, name, parts, generator, extras):
 
 
 def main():
-    out_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.join(os.path.dirname(__file__), "..", "default_room")
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("out_dir", nargs="?", default=os.path.join(os.path.dirname(__file__), "..", "default_room"),
+                        help="where to write default_room.gltf and .bin (default: data/default_room)")
+    out_dir = parser.parse_args().out_dir
     write_scene(out_dir, "default_room", room_parts(), "baker data/tools/make_default_room.py",
                 {"probe_hint": [[0.0, 1.5, 2.0], [0.0, 0.5, 3.5], [1.5, 2.5, 0.5]]})
 

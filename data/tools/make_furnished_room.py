@@ -11,6 +11,7 @@ Usage: python3 data/tools/make_furnished_room.py OUT_DIR
 Only the standard library is used, and the output is byte-for-byte reproducible. Not shipped:
 at 4 MB it is generated where it is needed.
 """
+import argparse
 import math
 import os
 import sys
@@ -44,8 +45,9 @@ def sphere(cx, cy, cz, r):
 
 
 def main():
-    if len(sys.argv) != 2:
-        sys.exit("usage: make_furnished_room.py OUT_DIR")
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("out_dir", help="where to write furnished_room.gltf and .bin")
+    out_dir = parser.parse_args().out_dir
     parts = room_parts()
     pieces = {0: [], 1: [], 2: []}
     # On the floor, clear of the two boxes (x -1.3..-0.3, z 0.8..1.8 and x 0.3..1.3, z 1.8..2.8).
@@ -59,7 +61,7 @@ def main():
     for k, (x, z) in enumerate(hanging):
         pieces[k % 3].append(sphere(x, 2.3, z, RADIUS))
     parts = [(material, quads + pieces.get(material, [])) for material, quads in parts]
-    write_scene(sys.argv[1], "furnished_room", parts, "baker data/tools/make_furnished_room.py",
+    write_scene(out_dir, "furnished_room", parts, "baker data/tools/make_furnished_room.py",
                 {"probe_hint": [[0.0, 1.5, 2.0], [0.0, 0.5, 3.5], [1.5, 2.5, 0.5]]})
 
 
