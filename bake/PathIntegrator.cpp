@@ -5,7 +5,10 @@
 #include <cstring>
 #include <limits>
 
+#include "bake/DirectView.h"
 #include "bake/PathRandom.h"
+#include "bake/PowerHeuristic.h"
+#include "bake/RayOffset.h"
 #include "bake/ScratchBuffer.h"
 #include "scene/Shading.h"
 
@@ -20,11 +23,6 @@ constexpr float kRouletteThreshold = 0.25f;
 // Shadow rays towards a sampled emitter point stop this fraction short of it, so that they do
 // not find the emitter itself.
 constexpr float kShadowShortening = 1e-4f;
-
-float powerHeuristic(float pdf, float otherPdf) {
-  const float a = pdf * pdf, b = otherPdf * otherPdf;
-  return a + b > 0.0f ? a / (a + b) : 0.0f;
-}
 
 // The straight-line arithmetic of a path step (directions, shadow-ray geometry, MIS weights) is
 // done for this many paths at once, in Eigen fixed-size arrays that compile to vector registers.
@@ -88,19 +86,6 @@ CosineDirections cosineDirections(const Lanes& nx, const Lanes& ny, const Lanes&
           -x * sign * nx - y * ny + z * nz, z};
 }
 
-// A float's spacing to the next larger one, for positive finite normal values: nextafter
-// without the library call.
-float floatStep(float magnitude) {
-  std::uint32_t bits;
-  std::memcpy(&bits, &magnitude, sizeof bits);
-  const std::uint32_t exponent = bits & 0x7f800000u;
-  if (exponent <= (23u << 23)) return std::nextafter(magnitude, std::numeric_limits<float>::infinity()) - magnitude;
-  const std::uint32_t stepBits = exponent - (23u << 23);
-  float step;
-  std::memcpy(&step, &stepBits, sizeof step);
-  return step;
-}
-
 }  // namespace
 
 struct PathIntegrator::Vertex {
@@ -108,6 +93,11 @@ struct PathIntegrator::Vertex {
   Eigen::Vector3f normal;  // geometric, unit, on the side the path arrived from
   Eigen::Vector3f albedo;
   Eigen::Vector3f throughput;
+  // Where the path came from and how: the previous vertex's ray origin, the direction, and
+  // its cosine density there; 0 for a probe ray's first hit, which came from the lattice.
+  Eigen::Vector3f previous;
+  Eigen::Vector3f arrival;
+  float arrivalPdf = 0.0f;
   int path = 0;
   PathRandom random{0, 0, 0};
 };
@@ -130,6 +120,13 @@ struct PathIntegrator::Scratch {
   ScratchBuffer<EmitterPoint> points;
   ScratchBuffer<SurfacePoint> emitterSurfaces;  // of the points on textured or alpha-tested emitters
   ScratchBuffer<float> pdfs;
+  struct Aimed {  // a vertex's ray aimed near a light
+    int path;
+    int light;
+    Eigen::Vector3f throughput;  // to the aimed ray's first hit, with the aim's MIS share
+  };
+  ScratchBuffer<Aimed> aimed;
+  ScratchBuffer<Ray> shadowRays;
 };
 
 PathIntegrator::PathIntegrator(const Scene& scene, const RayTracer& tracer, const TransportSettings& settings)
@@ -140,13 +137,11 @@ PathIntegrator::PathIntegrator(const Scene& scene, const RayTracer& tracer, cons
       sampleEmitters_(settings.emissiveLights && !emitters_.empty()),
       sampleEnvironment_(settings.environment && scene.environment.emits()),
       textured_(!scene.images.empty()),
+      lightAim_(scene, tracer),
+      aimFromVertices_(settings.punctualLights && settings.bounces >= 2 && !lightAim_.empty()),
       sceneScale_(scene.bounds.isEmpty() ? 1.0f : scene.bounds.diagonal().norm()) {}
 
-float PathIntegrator::rayOffset(const Eigen::Vector3f& point) const {
-  // A hit point is only known to a few units in the last place of its largest coordinate (and
-  // of the scene's size, for points near the origin): step 32 of those off the surface.
-  return 32.0f * floatStep(std::max(point.cwiseAbs().maxCoeff(), sceneScale_));
-}
+float PathIntegrator::rayOffset(const Eigen::Vector3f& point) const { return surfaceRayOffset(point, sceneScale_); }
 
 bool PathIntegrator::makeVertex(const Hit& hit, const Eigen::Vector3f& albedo, const Eigen::Vector3f& origin,
                                 const Eigen::Vector3f& direction, const Eigen::Vector3f& throughput,
@@ -177,7 +172,8 @@ const SurfacePoint& PathIntegrator::surfaceAt(const Hit& hit, SurfacePoint* loca
 }
 
 void PathIntegrator::trace(const Eigen::Vector3f& position, std::uint64_t probeId, const Eigen::Vector3f* directions,
-                           int count, Eigen::Vector3f* radiance, float* visibility, RayCounts* counts) const {
+                           int count, Eigen::Vector3f* radiance, float* visibility, RayCounts* counts,
+                           const ProbeView* directView) const {
   const Environment& sky = scene_.environment;
   const bool seeSky = settings_.environment && sky.emits();
   thread_local Scratch scratch;
@@ -196,17 +192,23 @@ void PathIntegrator::trace(const Eigen::Vector3f& position, std::uint64_t probeI
       radiance[ray].setZero();
       visibility[ray] = hit.missed() ? 1.0f : 0.0f;
       if (hit.missed()) {
-        if (seeSky) radiance[ray] = sky.radiance(directions[ray]);
+        if (seeSky) {
+          radiance[ray] = sky.radiance(directions[ray]);
+          if (directView) radiance[ray] *= directView->sampler->latticeSkyWeight(directions[ray]);
+        }
         continue;
       }
       const SurfacePoint& surface = surfaceAt(hit, &surfaces[i]);
       const Material& material = *surface.material;
-      if (settings_.emission && (hit.frontFace || material.doubleSided) && material.emissive())
+      if (settings_.emission && (hit.frontFace || material.doubleSided) && material.emissive()) {
         radiance[ray] = surfaceEmission(surface);
+        if (directView) radiance[ray] *= directView->sampler->latticeEmitterWeight(hit, directions[ray]);
+      }
       Vertex& v = vertices[live];
       if (settings_.bounces > 0 && makeVertex(hit, surfaceAlbedo(surface), position, directions[ray],
                                               Eigen::Vector3f::Ones(), &v)) {
         v.path = ray;
+        v.arrivalPdf = 0.0f;
         v.random = PathRandom(settings_.seed, probeId, std::uint64_t(ray));
         ++live;
       }
@@ -216,14 +218,19 @@ void PathIntegrator::trace(const Eigen::Vector3f& position, std::uint64_t probeI
   // combined with it by MIS: the ray may find them.
   const bool lastContinuation = sampleEmitters_ || sampleEnvironment_;
   for (int bounce = 1; bounce <= settings_.bounces && live > 0; ++bounce) {
-    addNextEvents(vertices, live, scratch, radiance, counts);
+    if (bounce == 1)
+      addNextEvents(vertices, live, scratch, radiance, counts, directView, directions);
+    else
+      addNextEvents(vertices, live, scratch, radiance, counts);
     if (bounce == settings_.bounces && !lastContinuation) break;
+    if (aimFromVertices_ && bounce < settings_.bounces) aimAtLights(vertices, live, scratch, radiance, counts);
     live = continuePaths(vertices, live, bounce < settings_.bounces, scratch, radiance, counts);
   }
 }
 
 void PathIntegrator::addNextEvents(Vertex* vertices, int count, Scratch& scratch, Eigen::Vector3f* radiance,
-                                   RayCounts* counts) const {
+                                   RayCounts* counts, const ProbeView* firstHits,
+                                   const Eigen::Vector3f* directions) const {
   Ray* rays = nullptr;
   Scratch::Pending* pending = nullptr;
   int shadowRays = 0;
@@ -246,7 +253,12 @@ void PathIntegrator::addNextEvents(Vertex* vertices, int count, Scratch& scratch
     for (int k = 0; k < count; ++k) {
       const Vertex& v = vertices[k];
       const Eigen::Vector3f reflect = v.throughput.cwiseProduct(v.albedo) * kInvPi;
-      for (const PunctualLight& light : scene_.lights) {
+      // Reached by a continuation from a vertex that also aimed at the lights: the lights'
+      // terms here share with that aim.
+      const bool aimedFrom = !firstHits && aimFromVertices_ && v.arrivalPdf > 0.0f;
+      const float aimTotal = aimedFrom ? aimWeights(v.previous) : 0.0f;
+      for (std::size_t l = 0; l < scene_.lights.size(); ++l) {
+        const PunctualLight& light = scene_.lights[l];
         Eigen::Vector3f toLight;
         float distance = std::numeric_limits<float>::infinity();
         Eigen::Vector3f irradiance = light.color * light.intensity;  // on a surface facing the light
@@ -263,8 +275,17 @@ void PathIntegrator::addNextEvents(Vertex* vertices, int count, Scratch& scratch
         const float cosine = v.normal.dot(toLight);
         // A light almost on the surface can exceed single precision: dropped, as at probes.
         if (cosine <= 0.0f || !(irradiance.maxCoeff() > 0.0f) || !irradiance.allFinite()) continue;
+        float share = 1.0f;
+        if (light.type != PunctualLight::Type::Directional) {
+          if (firstHits)
+            share = firstHits->sampler->latticeSpotWeight(*firstHits, int(l), directions[v.path]);
+          else if (aimTotal > 0.0f) {
+            const LightAim::Aim aim = lightAim_.aim(int(l), v.previous);
+            share = powerHeuristic(v.arrivalPdf, aim.weight / aimTotal * LightAim::density(aim, v.arrival));
+          }
+        }
         rays[shadowRays] = {v.origin, toLight, 0.0f, distance};
-        pending[shadowRays++] = {v.path, reflect.cwiseProduct(irradiance) * cosine};
+        pending[shadowRays++] = {v.path, reflect.cwiseProduct(irradiance) * (cosine * share)};
       }
     }
     resolve(&counts->punctualShadow);
@@ -356,6 +377,92 @@ void PathIntegrator::addNextEvents(Vertex* vertices, int count, Scratch& scratch
   }
 }
 
+float PathIntegrator::aimWeights(const Eigen::Vector3f& from) const {
+  float total = 0.0f;
+  for (const int l : lightAim_.lights()) total += lightAim_.aim(l, from).weight;
+  return total;
+}
+
+void PathIntegrator::aimAtLights(Vertex* vertices, int count, Scratch& scratch, Eigen::Vector3f* radiance,
+                                 RayCounts* counts) const {
+  // Each vertex aims one direction near a light (chosen by power over squared distance), and
+  // its first hit takes that light's next-event term, weighted against the continuation's
+  // next vertex, whose term aimDensity weights the other way (power heuristic).
+  Ray* rays = scratch.rays.reserve(std::size_t(count));
+  Scratch::Aimed* aimed = scratch.aimed.reserve(std::size_t(count));
+  int aims = 0;
+  for (int k = 0; k < count; ++k) {
+    Vertex& v = vertices[k];
+    const float xiChoice = v.random.uniform(), xi1 = v.random.uniform(), xi2 = v.random.uniform();
+    const float total = aimWeights(v.origin);
+    if (!(total > 0.0f)) continue;
+    float running = 0.0f;
+    int light = -1;
+    LightAim::Aim aim;
+    for (const int l : lightAim_.lights()) {
+      aim = lightAim_.aim(l, v.origin);
+      light = l;
+      running += aim.weight;
+      if (xiChoice * total < running) break;
+    }
+    if (!(aim.width > 0.0f)) continue;
+    const Eigen::Vector3f direction = LightAim::direction(aim, xi1, xi2);
+    const float cosine = v.normal.dot(direction);
+    if (cosine <= 0.0f) continue;
+    const float density = aim.weight / total * LightAim::density(aim, direction);
+    const float bsdfPdf = cosine * kInvPi;
+    // (ρ/π)·cosθ / pdf, times the aim's share.
+    const Eigen::Vector3f throughput =
+        v.throughput.cwiseProduct(v.albedo) * (bsdfPdf / density * powerHeuristic(density, bsdfPdf));
+    if (!(throughput.maxCoeff() > 0.0f) || !throughput.allFinite()) continue;
+    rays[aims] = {v.origin, direction, 0.0f, std::numeric_limits<float>::infinity()};
+    aimed[aims++] = {v.path, light, throughput};
+  }
+  Ray* shadow = scratch.shadowRays.reserve(std::size_t(aims));
+  Scratch::Pending* pending = scratch.pending.reserve(std::size_t(aims));
+  int shadowRays = 0;
+  Hit hits[8];
+  SurfacePoint surfaces[8];
+  for (int first = 0; first < aims; first += 8) {
+    const int n = std::min(8, aims - first);
+    tracer_.intersect8(rays + first, n, hits);
+    counts->aimedBounce += n;
+    locateSurfaces(hits, n, surfaces);
+    for (int i = 0; i < n; ++i) {
+      const Hit& hit = hits[i];
+      if (hit.missed()) continue;
+      const Ray& ray = rays[first + i];
+      const Scratch::Aimed& a = aimed[first + i];
+      const SurfacePoint& surface = surfaceAt(hit, &surfaces[i]);
+      const Eigen::Vector3f albedo = surfaceAlbedo(surface);
+      if (!(albedo.maxCoeff() > 0.0f)) continue;
+      const Eigen::Vector3f front = hit.frontNormal * (1.0f / hit.frontNormal.norm());
+      const Eigen::Vector3f normal = hit.frontFace ? front : Eigen::Vector3f(-front);
+      const Eigen::Vector3f point = ray.origin + hit.distance * ray.direction;
+      const Eigen::Vector3f origin = point + rayOffset(point) * normal;
+      const PunctualLight& light = scene_.lights[a.light];
+      const Eigen::Vector3f d = light.position - origin;
+      const float distance = d.norm();
+      if (!(distance > 0.0f)) continue;
+      const Eigen::Vector3f toLight = d / distance;
+      const float cosine = normal.dot(toLight);
+      if (cosine <= 0.0f) continue;
+      Eigen::Vector3f irradiance = light.color * (light.intensity / (distance * distance));
+      if (light.type == PunctualLight::Type::Spot) irradiance *= light.spotFalloff(-toLight.dot(light.direction));
+      const Eigen::Vector3f contribution = a.throughput.cwiseProduct(albedo).cwiseProduct(irradiance) * (cosine * kInvPi);
+      if (!(contribution.maxCoeff() > 0.0f) || !contribution.allFinite()) continue;
+      shadow[shadowRays] = {origin, toLight, 0.0f, distance};
+      pending[shadowRays++] = {a.path, contribution};
+    }
+  }
+  if (shadowRays == 0) return;
+  bool* blocked = scratch.blocked.reserve(std::size_t(shadowRays));
+  tracer_.occluded(shadow, shadowRays, blocked);
+  for (int k = 0; k < shadowRays; ++k)
+    if (!blocked[k]) radiance[pending[k].path] += pending[k].contribution;
+  counts->aimedBounceShadow += shadowRays;
+}
+
 int PathIntegrator::continuePaths(Vertex* vertices, int count, bool keepVertices, Scratch& scratch,
                                   Eigen::Vector3f* radiance, RayCounts* counts) const {
   Ray* rays = scratch.rays.reserve(std::size_t(count));
@@ -436,6 +543,9 @@ int PathIntegrator::continuePaths(Vertex* vertices, int count, bool keepVertices
       if (keepVertices && makeVertex(hit, surfaceAlbedo(surface), ray.origin, ray.direction, throughput, &next)) {
         next.path = path;
         next.random = random;
+        next.previous = ray.origin;
+        next.arrival = ray.direction;
+        next.arrivalPdf = pdf;
         ++kept;
       }
     }

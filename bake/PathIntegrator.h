@@ -3,6 +3,7 @@
 #include <cstdint>
 
 #include "bake/EmitterSampler.h"
+#include "bake/LightAim.h"
 #include "bake/Transport.h"
 #include "scene/RayTracer.h"
 #include "scene/Scene.h"
@@ -10,6 +11,7 @@
 namespace baker {
 
 struct SurfacePoint;
+struct ProbeView;
 
 // Radiance arriving at a probe along fixed directions, one Lambertian path per direction.
 //
@@ -30,11 +32,15 @@ class PathIntegrator {
   PathIntegrator(const Scene& scene, const RayTracer& tracer, const TransportSettings& settings);
 
   // radiance[i] and visibility[i] for directions[i], i < count. The random numbers of ray i
-  // depend only on (settings.seed, probeId, i).
+  // depend only on (settings.seed, probeId, i). With `directView`, the directions are the
+  // probe's lattice and what it samples by importance is weighted by the lattice's MIS share:
+  // the sky seen, the emission of a first hit and punctual lights' next-event term there.
   void trace(const Eigen::Vector3f& position, std::uint64_t probeId, const Eigen::Vector3f* directions, int count,
-             Eigen::Vector3f* radiance, float* visibility, RayCounts* counts) const;
+             Eigen::Vector3f* radiance, float* visibility, RayCounts* counts,
+             const ProbeView* directView = nullptr) const;
 
   const EmitterSampler& emitters() const { return emitters_; }
+  const LightAim& lightAim() const { return lightAim_; }
   // How far a ray starts off the surface it leaves: a few float steps of the point's largest
   // coordinate or of the scene's size, so that the same scene at any scale or place bakes the same.
   float rayOffset(const Eigen::Vector3f& point) const;
@@ -42,8 +48,18 @@ class PathIntegrator {
  private:
   struct Vertex;
   struct Scratch;
-  void addNextEvents(Vertex* vertices, int count, Scratch& scratch, Eigen::Vector3f* radiance,
-                     RayCounts* counts) const;
+  // `firstHits`: the vertices are the first hits of the probe's lattice `directions`, and their
+  // punctual terms keep the lattice's share (DirectView).
+  void addNextEvents(Vertex* vertices, int count, Scratch& scratch, Eigen::Vector3f* radiance, RayCounts* counts,
+                     const ProbeView* firstHits = nullptr, const Eigen::Vector3f* directions = nullptr) const;
+  // Before a path continues, each vertex also aims a ray near a punctual light: a surface close
+  // to a light, found by the cosine continuation only now and then, lights the path strongly,
+  // and the aimed ray finds it often (LightAim), both combined by MIS.
+  void aimAtLights(Vertex* vertices, int count, Scratch& scratch, Eigen::Vector3f* radiance,
+                   RayCounts* counts) const;
+  // Σ over the lights aimed at of their weight from `from`: a vertex there aims at light l with
+  // probability aim(l).weight / Σ.
+  float aimWeights(const Eigen::Vector3f& from) const;
   // Returns how many vertices the continued paths made (in place of the old ones).
   int continuePaths(Vertex* vertices, int count, bool keepVertices, Scratch& scratch, Eigen::Vector3f* radiance,
                     RayCounts* counts) const;
@@ -65,6 +81,8 @@ class PathIntegrator {
   bool sampleEmitters_;     // emissive triangles light surfaces, and there are some
   bool sampleEnvironment_;  // the sky lights surfaces
   bool textured_;           // the scene has textures
+  LightAim lightAim_;
+  bool aimFromVertices_;    // path vertices aim at punctual lights (aimAtLights)
   float sceneScale_;
 };
 

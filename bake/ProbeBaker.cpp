@@ -24,11 +24,10 @@ namespace {
 // Probes traced per task: about a millisecond of work at 256 rays, far above the cost of a task.
 constexpr int kProbesPerTask = 8;
 
-// Rotation 0 is the identity; the others are uniformly random rotations (Shoemake's method)
-// from a fixed stream, so they are the same in every bake.
-Eigen::Matrix3f fixedRotation(int index) {
-  if (index == 0) return Eigen::Matrix3f::Identity();
-  PathRandom random(0x726f746174696f6eull, std::uint64_t(index), 0);
+// Uniformly random rotations (Shoemake's method) drawn from the seed: the same for a seed in
+// every bake, independent from seed to seed.
+Eigen::Matrix3f seededRotation(std::uint64_t seed, int index) {
+  PathRandom random(0x726f746174696f6eull ^ seed, std::uint64_t(index), 0);
   const double u1 = random.uniform(), u2 = 2.0 * M_PI * random.uniform(), u3 = 2.0 * M_PI * random.uniform();
   const double a = std::sqrt(1.0 - u1), b = std::sqrt(u1);
   const Eigen::Quaterniond q(b * std::cos(u3), a * std::sin(u2), a * std::cos(u2), b * std::sin(u3));
@@ -54,8 +53,9 @@ Eigen::Vector3f sampledIrradiance(const ProbeSamples& s, const Eigen::Vector3f& 
   Eigen::Vector3d e = Eigen::Vector3d::Zero();
   for (std::size_t r = 0; r < s.radiance.size(); ++r)
     e += s.radiance[r].cast<double>() * (s.weights[r] * std::max(0.0f, n.dot(s.directions[r])));
-  for (const PunctualAtProbe::Arrival& a : s.punctual)
-    e += a.irradiance.cast<double>() * double(std::max(0.0f, n.dot(a.direction)));
+  for (const auto* arrivals : {&s.punctual, &s.direct})
+    for (const PunctualAtProbe::Arrival& a : *arrivals)
+      e += a.irradiance.cast<double>() * double(std::max(0.0f, n.dot(a.direction)));
   return e.cast<float>();
 }
 
@@ -68,7 +68,7 @@ struct ProbeBaker::ChannelGroup {
   // Per rotation: functions × rays, radiance → irradiance. Row-major, so that each coefficient
   // is one contiguous dot product with a probe's contiguous samples.
   std::vector<Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> fromSamples;
-  Eigen::MatrixXd fromPunctualSh;            // functions × PunctualAtProbe::shCount()
+  Eigen::MatrixXd fromPunctualSh;            // functions × PunctualAtProbe::shCount(): arrivals → irradiance
   Eigen::MatrixXd gram;                      // for the non-negative solve
 };
 
@@ -78,6 +78,7 @@ ProbeBaker::ProbeBaker(const Scene& scene, const RayTracer& tracer, const Basis&
       settings_(settings),
       integrator_(scene, tracer, settings.transport),
       punctual_(scene, tracer, punctualShOrder(basis)),
+      directView_(scene, tracer, settings.transport, integrator_.emitters(), integrator_.lightAim(), settings.rays),
       coefficientsPerProbe_(basis.totalCoefficients()),
       visibilityPerProbe_(basis.functions(0).count()) {
   const DirectionSet fibonacci = sphericalFibonacci(settings.rays);
@@ -88,14 +89,14 @@ ProbeBaker::ProbeBaker(const Scene& scene, const RayTracer& tracer, const Basis&
   const SphericalHarmonics sampleSh(shOrder_);
   std::vector<SampledFit> shFits;
   for (int r = 0; r < rotations; ++r) {
-    const DirectionSet set = rotated(fibonacci, fixedRotation(r));
+    const DirectionSet set = rotated(fibonacci, seededRotation(settings.transport.seed, r));
     std::vector<Eigen::Vector3f> d;
     for (const Eigen::Vector3d& v : set.directions) d.push_back(v.cast<float>());
     directions_.push_back(std::move(d));
     shFits.emplace_back(sampleSh, set, basis.name() + " (SH fit of the samples)",
                         r == 0 ? SampledFit::Conditioning::Check : SampledFit::Conditioning::CheckedByRotation);
   }
-  const bool punctualAtProbe = settings.transport.directPunctual && !punctual_.empty();
+  const bool arrivalsAtProbe = (settings.transport.directPunctual && !punctual_.empty()) || !directView_.empty();
   for (int c = 0; c < 3; ++c) {
     if (c > 0 && &basis.functions(c) == &basis.functions(c - 1)) {
       ++groups_.back().channelCount;
@@ -110,7 +111,7 @@ ProbeBaker::ProbeBaker(const Scene& scene, const RayTracer& tracer, const Basis&
     // G⁻¹ B_sh C after each rotation's fit P: samples → irradiance coefficients in one operator.
     const Eigen::MatrixXd fromSh = ops.irradianceFromSh(shOrder_, settings.projection.window);
     for (const SampledFit& fit : shFits) group.fromSamples.push_back(fit.after(fromSh).cast<float>());
-    if (punctualAtProbe)
+    if (arrivalsAtProbe)
       group.fromPunctualSh = ops.irradianceFromSh(punctual_.shOrder(), settings.projection.window);
     if (settings.projection.nonNegative) group.gram = ops.gram();
     groups_.push_back(std::move(group));
@@ -136,10 +137,11 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
   thread_local ScratchBuffer<float> sampleStore;
   Eigen::Map<Eigen::MatrixXf> columns(sampleStore.reserve(std::size_t(rays) * 4 * std::size_t(p)), rays, 4 * p);
   const bool punctualAtProbe = settings_.transport.directPunctual && !punctual_.empty();
+  const bool arrivalsAtProbe = punctualAtProbe || !directView_.empty();
   Eigen::MatrixXd punctualSh;
   const int shCount = punctual_.shCount();
-  if (punctualAtProbe) punctualSh.setZero(shCount, 3 * p);
-  std::atomic<bool> anyPunctual{false};
+  if (arrivalsAtProbe) punctualSh.setZero(shCount, 3 * p);
+  std::atomic<bool> anyArrivals{false};
 
   struct Block {
     int rotation, first, count;
@@ -171,25 +173,27 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
         const int within = s - block.first;
         const int taskIndex = order[s];
         const ProbeTask& task = tasks[taskIndex];
-        integrator_.trace(task.position, task.id, dirs.data(), rays, radiance.data(), sky.data(), &rangeCounts);
+        const ProbeView view = directView_.at(task.position);
+        integrator_.trace(task.position, task.id, dirs.data(), rays, radiance.data(), sky.data(), &rangeCounts,
+                          &view);
         const int base = 4 * block.first;
         for (int r = 0; r < rays; ++r) {
           const Eigen::Vector3f value = toColorSpace(space, radiance[r]);
           for (int c = 0; c < 3; ++c) columns(r, base + c * block.count + within) = value[c];
           columns(r, base + 3 * block.count + within) = sky[r];
         }
-        std::vector<PunctualAtProbe::Arrival> lights;
-        if (punctualAtProbe) {
-          lights = punctual_.visibleLights(task.position, &rangeCounts);
-          if (!lights.empty()) {
-            anyPunctual = true;
-            std::vector<double> sh(3 * shCount, 0.0);
-            punctual_.addHarmonics(lights, sh.data());
-            for (int i = 0; i < shCount; ++i) {
-              const Eigen::Vector3d rgb(sh[i], sh[shCount + i], sh[2 * shCount + i]);
-              const Eigen::Vector3d value = toColorSpace(space, rgb.cast<float>()).cast<double>();
-              for (int c = 0; c < 3; ++c) punctualSh(i, c * p + taskIndex) = value[c];
-            }
+        std::vector<PunctualAtProbe::Arrival> lights, direct;
+        if (punctualAtProbe) lights = punctual_.visibleLights(task.position, &rangeCounts);
+        if (!directView_.empty()) directView_.sample(view, task.id, &direct, &rangeCounts);
+        if (!lights.empty() || !direct.empty()) {
+          anyArrivals = true;
+          std::vector<double> sh(3 * shCount, 0.0);
+          punctual_.addHarmonics(lights, sh.data());
+          punctual_.addHarmonics(direct, sh.data());
+          for (int i = 0; i < shCount; ++i) {
+            const Eigen::Vector3d rgb(sh[i], sh[shCount + i], sh[2 * shCount + i]);
+            const Eigen::Vector3d value = toColorSpace(space, rgb.cast<float>()).cast<double>();
+            for (int c = 0; c < 3; ++c) punctualSh(i, c * p + taskIndex) = value[c];
           }
         }
         if (samples) {
@@ -199,6 +203,7 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
           probeSamples.radiance = radiance;
           probeSamples.visibility = sky;
           probeSamples.punctual = lights;
+          probeSamples.direct = direct;
         }
       }
       const std::lock_guard<std::mutex> lock(countsMutex);
@@ -232,7 +237,7 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
               float(1.0 / M_PI), visibility + std::size_t(order[block.first + within]) * visibilityPerProbe_);
   }
 
-  if (anyPunctual) {
+  if (anyArrivals) {
     for (const ChannelGroup& group : groups_) {
       const Eigen::MatrixXd result =
           group.fromPunctualSh * punctualSh.middleCols(group.firstChannel * p, group.channelCount * p);

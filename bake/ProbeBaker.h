@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "bake/Basis.h"
+#include "bake/DirectView.h"
 #include "bake/GramOperators.h"
 #include "bake/PathIntegrator.h"
 #include "bake/PunctualAtProbe.h"
@@ -42,22 +43,32 @@ struct ProbeSamples {
   std::vector<Eigen::Vector3f> radiance;
   std::vector<float> visibility;
   std::vector<PunctualAtProbe::Arrival> punctual;  // lights reaching the probe (direct-punctual)
+  std::vector<DirectView::Arrival> direct;         // what DirectView sampled, MIS-weighted
 };
 
-// E(n) = Σ L(ω) max(0, n·ω) w over the probe's rays, plus each punctual light's exact
-// E⊥ max(0, n·ω): the irradiance the samples imply, before any basis.
+// E(n) = Σ L(ω) max(0, n·ω) w over the probe's rays, plus E⊥ max(0, n·ω) of each punctual
+// light and of each direct-view sample: the irradiance the samples imply, before any basis.
 Eigen::Vector3f sampledIrradiance(const ProbeSamples& samples, const Eigen::Vector3f& normal);
 
-// Bakes batches of probes (a brick) into basis coefficients. Each probe traces a fixed set of
-// `rays` spherical Fibonacci directions, turned by one of a few fixed rotations: neighbouring
-// probes of a grid trace differently turned sets, so the aliasing of one set (bands along its
-// spiral) does not repeat as one coherent pattern across the volume, and no probe needs an
-// operator of its own. Each rotation has its precomputed projection: samples → SH fit of
-// the resolvable order → clamped-cosine convolution → exact projection into the basis. A batch
-// costs one matrix product per rotation and channel group. Punctual lights seen by the probe
-// enter as exact SH deltas through a second precomputed product.
+// Bakes batches of probes (a brick) into basis coefficients. Each probe traces a lattice of
+// `rays` spherical Fibonacci directions, turned by one of a few rotations drawn from the seed:
+// each seed traces its own directions, so that bakes of different seeds are independent and
+// their spread measures the error, and neighbouring probes of a grid trace differently turned
+// sets, so that the aliasing of one set does not repeat as one pattern across the volume. What
+// the probe sees directly that is small and bright is sampled by importance besides
+// (DirectView) and combined with the lattice by MIS. Each rotation has its precomputed
+// projection: samples → SH fit of the resolvable order → clamped-cosine convolution → exact
+// projection into the basis. A batch costs one matrix product per rotation and channel group.
+// Punctual lights seen by the probe, and the direct-view samples, enter as SH deltas through a
+// second precomputed product.
 class ProbeBaker {
  public:
+  // Which sampler made a volume, recorded in its metadata (setting "sampler") so that `validate`
+  // says why volumes of two versions differ: the lattice's rotations drawn from the seed, the
+  // direct view sampled by importance and combined by MIS, path vertices aiming at lights.
+  // Volumes before it record none (one fixed set of eight rotations, the lattice alone).
+  static constexpr const char* kSampler = "seeded-lattice+direct-view-mis+aimed-bounces/1";
+
   // The sample fit never goes beyond this SH order: the clamped cosine's band 16 is 0.15 % of
   // band 0, and the fit's cost grows with the square of the SH count.
   static constexpr int kMaxSampleShOrder = 16;
@@ -88,6 +99,7 @@ class ProbeBaker {
   BakeSettings settings_;
   PathIntegrator integrator_;
   PunctualAtProbe punctual_;
+  DirectView directView_;
   std::vector<std::vector<Eigen::Vector3f>> directions_;  // per rotation
   std::vector<double> weights_;
   std::vector<ChannelGroup> groups_;

@@ -25,10 +25,15 @@ struct RayCounts {
   std::int64_t emitterShadow = 0;     // towards sampled points of emissive triangles
   std::int64_t environmentShadow = 0; // towards sampled sky directions
   std::int64_t directPunctualShadow = 0;  // from probes towards punctual lights
+  std::int64_t directView = 0;        // from probes: sampled sky directions, emitter points, aims near lights
+  std::int64_t directViewShadow = 0;  // from the first hits of those aims towards their lights
+  std::int64_t aimedBounce = 0;       // from path vertices, aimed near punctual lights
+  std::int64_t aimedBounceShadow = 0; // from the first hits of those towards their lights
   std::int64_t validity = 0;          // testing whether probes sit inside geometry
 
   std::int64_t total() const {
-    return probe + bounce + punctualShadow + emitterShadow + environmentShadow + directPunctualShadow + validity;
+    return probe + bounce + punctualShadow + emitterShadow + environmentShadow + directPunctualShadow + directView +
+           directViewShadow + aimedBounce + aimedBounceShadow + validity;
   }
   RayCounts& operator+=(const RayCounts& o) {
     probe += o.probe;
@@ -37,6 +42,10 @@ struct RayCounts {
     emitterShadow += o.emitterShadow;
     environmentShadow += o.environmentShadow;
     directPunctualShadow += o.directPunctualShadow;
+    directView += o.directView;
+    directViewShadow += o.directViewShadow;
+    aimedBounce += o.aimedBounce;
+    aimedBounceShadow += o.aimedBounceShadow;
     validity += o.validity;
     return *this;
   }

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "bake/Baker.h"
+#include "bake/ProbeBaker.h"
 #include "bake/SphericalGaussianBasis.h"
 #include "cli/BakeOptions.h"
 #include "cli/CommandLine.h"
@@ -61,6 +62,7 @@ int runBakeCommand(int argc, char** argv) {
     volume.settings["rays"] = std::to_string(options.rays);
     volume.settings["bounces"] = std::to_string(prepared.settings.transport.bounces);
     volume.settings["seed"] = std::to_string(options.seed);
+    volume.settings["sampler"] = ProbeBaker::kSampler;
     for (const PlannedEffect& e : prepared.plan) volume.settings["effect." + e.name] = e.simulated ? "on" : "off";
     volume.settings["window"] = std::to_string(options.projection.window.hannWidth);
     volume.settings["non_negative"] = options.projection.nonNegative ? "true" : "false";
@@ -109,12 +111,12 @@ int runBakeCommand(int argc, char** argv) {
           "bounce(s), in {:.2f} s ({:.1f} Mrays/s; operators {:.2f} s; load {:.2f} s, BVH {:.2f} s, write {:.2f} "
           "s; peak memory {:.0f} MiB)\n"
           "rays: {} probe, {} bounce, {} punctual shadow, {} emitter shadow, {} environment shadow, {} direct "
-          "punctual shadow, {} validity; {} in all\n",
+          "punctual shadow, {} direct view, {} direct-view shadow, {} aimed bounce, {} aimed-bounce shadow, {} validity; {} in all\n",
           stats.probes, grid.dims.x(), grid.dims.y(), grid.dims.z(), grid.spacing, stats.relocatedProbes,
           stats.invalidProbes, options.rays, prepared.settings.transport.bounces, stats.traceSeconds, mrays,
           stats.operatorSeconds, prepared.loadSeconds, prepared.bvhSeconds, writeSeconds,
           peakMemoryBytes() / 1048576.0, r.probe, r.bounce, r.punctualShadow, r.emitterShadow, r.environmentShadow,
-          r.directPunctualShadow, r.validity, r.total());
+          r.directPunctualShadow, r.directView, r.directViewShadow, r.aimedBounce, r.aimedBounceShadow, r.validity, r.total());
       std::cout << fmt::format("wrote {} ({}, {} coefficients per probe)\n", output.path, basis.name(),
                                basis.totalCoefficients());
     }

@@ -113,6 +113,10 @@ nlohmann::json rayCountsJson(const RayCounts& r) {
           {"emitter_shadow", r.emitterShadow},
           {"environment_shadow", r.environmentShadow},
           {"direct_punctual_shadow", r.directPunctualShadow},
+          {"direct_view", r.directView},
+          {"direct_view_shadow", r.directViewShadow},
+          {"aimed_bounce", r.aimedBounce},
+          {"aimed_bounce_shadow", r.aimedBounceShadow},
           {"validity", r.validity},
           {"total", r.total()}};
 }
