@@ -14,9 +14,8 @@ namespace baker {
 namespace {
 
 constexpr float kPi = 3.14159265358979f;
-// Visibility rays towards a sampled surface point stop this fraction short of it, so that they
-// do not find the point's own surface (as surfaces' emitter shadow rays do).
-constexpr float kShortening = 1e-4f;
+// Emitter points seen this close to edge-on are not sampled (their density would overflow).
+constexpr float kGrazing = 1e-6f;
 // Each kind of sample draws from its own streams, apart from the lattice paths' (ray < R).
 constexpr std::uint64_t kSkyStream = 1ull << 40, kEmitterStream = 2ull << 40, kSpotStream = 3ull << 40;
 
@@ -64,7 +63,6 @@ DirectView::DirectView(const Scene& scene, const RayTracer& tracer, const Transp
       emitters_(emitters),
       aim_(aim),
       seed_(settings.seed),
-      alphaFilters_(settings.alphaFilters),
       latticeDensity_(float(double(latticeRays) / (4.0 * M_PI))),
       sceneScale_(scene.bounds.isEmpty() ? 1.0f : scene.bounds.diagonal().norm()) {
   const int perKind = std::max(1, (latticeRays + 3) / 4);
@@ -102,8 +100,9 @@ float DirectView::latticeSkyWeight(const Eigen::Vector3f& direction) const {
 
 float DirectView::latticeEmitterWeight(const Hit& hit, const Eigen::Vector3f& direction) const {
   if (!samplesEmitters()) return 1.0f;
+  // Where the samples never go, the lattice keeps it all.
   const float cosine = std::abs(hit.frontNormal.normalized().dot(direction));
-  if (!(cosine > 0.0f)) return 1.0f;
+  if (!(cosine >= kGrazing)) return 1.0f;
   const float pdf = emitters_.pdfArea(hit.instance, hit.triangle) * hit.distance * hit.distance / cosine;
   return powerHeuristic(latticeDensity_, float(emitterSamples_) * pdf);
 }
@@ -147,14 +146,22 @@ void DirectView::sampleSky(const ProbeView& view, std::uint64_t probeId, std::ve
 
 void DirectView::sampleEmitters(const ProbeView& view, std::uint64_t probeId, std::vector<Arrival>* arrivals,
                                 RayCounts* counts) const {
-  thread_local Pending pending;
-  pending.start();
+  // A sample counts where the probe's ray towards it first hits the sampled triangle itself, as
+  // a lattice ray must to see that emission: not through a surface just in front of it (a
+  // coincident emitter, glass, a decal), nor where an alpha filter lets the ray through.
+  struct Candidate {
+    Arrival arrival;
+    std::uint64_t triangle;
+  };
+  thread_local std::vector<Candidate> candidates;
+  thread_local std::vector<Eigen::Vector3f> directions;
+  candidates.clear();
+  directions.clear();
   const float m = float(emitterSamples_);
   PathRandom random(seed_, probeId, kEmitterStream);
   const double s1 = random.uniform(), s2 = random.uniform(), s3 = random.uniform();
   for (int j = 0; j < emitterSamples_; ++j) {
     const float xiChoice = kronecker(s1, kR3[0], j), xi1 = kronecker(s2, kR3[1], j), xi2 = kronecker(s3, kR3[2], j);
-    const float xiCoverage = random.uniform();
     const EmitterSampler::Sample s = emitters_.sample(xiChoice, xi1, xi2);
     const EmitterSampler::Emitter& e = *s.emitter;
     const Eigen::Vector3f d = s.point - view.position;
@@ -162,20 +169,29 @@ void DirectView::sampleEmitters(const ProbeView& view, std::uint64_t probeId, st
     if (!(distance > 0.0f)) continue;
     const Eigen::Vector3f direction = d / distance;
     const float cosLight = -e.frontNormal.dot(direction);
-    if (std::abs(cosLight) < 1e-6f || (cosLight < 0.0f && !e.doubleSided)) continue;
+    if (std::abs(cosLight) < kGrazing || (cosLight < 0.0f && !e.doubleSided)) continue;
     Eigen::Vector3f emission = e.emission;
-    if (e.textured || e.alphaTested) {
+    if (e.textured) {
       SurfacePoint surface;
       locateSurface(scene_, e.mesh, e.triangle, s.u, s.v, &surface);
-      if (alphaFilters_ && e.alphaTested && !surfaceStopsRay(surface, xiCoverage)) continue;  // a transparent texel
-      if (e.textured) emission = surfaceEmission(surface);
+      emission = surfaceEmission(surface);
     }
     const float density = m * e.pdfArea * distance * distance / std::abs(cosLight);
     const Eigen::Vector3f irradiance = emission * (powerHeuristic(density, latticeDensity_) / density);
     if (!(irradiance.maxCoeff() > 0.0f) || !irradiance.allFinite()) continue;
-    pending.add({view.position, direction, 0.0f, distance * (1.0f - kShortening)}, {direction, irradiance, distance});
+    candidates.push_back({{direction, irradiance, distance}, e.globalTriangle});
+    directions.push_back(direction);
   }
-  pending.resolve(tracer_, arrivals, &counts->directView);
+  Hit hits[8];
+  const int count = int(candidates.size());
+  for (int first = 0; first < count; first += 8) {
+    const int n = std::min(8, count - first);
+    tracer_.intersect8(view.position, directions.data() + first, n, hits);
+    counts->directView += n;
+    for (int i = 0; i < n; ++i)
+      if (!hits[i].missed() && scene_.globalTriangle(hits[i].instance, hits[i].triangle) == candidates[first + i].triangle)
+        arrivals->push_back(candidates[first + i].arrival);
+  }
 }
 
 void DirectView::sampleSpots(const ProbeView& view, std::uint64_t probeId, std::vector<Arrival>* arrivals,
@@ -188,14 +204,12 @@ void DirectView::sampleSpots(const ProbeView& view, std::uint64_t probeId, std::
   for (const int light : view.aimed) {
     const double s1 = shift.uniform(), s2 = shift.uniform();
     for (int j = 0; j < view.samples[light]; ++j) {
-    const float xi1 = kronecker(s1, kR2[0], j), xi2 = kronecker(s2, kR2[1], j);
-    directions.push_back(LightAim::direction(view.aims[light], xi1, xi2));
-    aimedAt.push_back(light);
+      directions.push_back(LightAim::direction(view.aims[light], kronecker(s1, kR2[0], j), kronecker(s2, kR2[1], j)));
+      aimedAt.push_back(light);
     }
   }
   // The aimed rays find their first hits; each hit then checks its light with a shadow ray.
   thread_local Pending pending;
-  thread_local std::vector<Eigen::Vector3f> reflected;  // L·w/(M·pdf) of each shadow ray's sample
   pending.start();
   Hit hits[8];
   const int aims = int(directions.size());

@@ -33,7 +33,8 @@ struct ProbeView {
 // seeds. So each probe also draws samples of three kinds, each checked by a ray from the probe:
 //   sky       directions by the environment map's luminance (the table surfaces' next-event
 //             estimation uses), for a lat-long map; a constant sky is smooth, the lattice's job;
-//   emitters  points of emissive triangles chosen by power, uniform on each;
+//   emitters  points of emissive triangles chosen by power, uniform on each, counted where the
+//             probe's ray towards the point first hits that triangle;
 //   spots     directions aimed near a punctual light (LightAim), whose first hit takes that
 //             light's next-event term; the lights share the samples by power over squared
 //             distance;
@@ -88,7 +89,6 @@ class DirectView {
   const EmitterSampler& emitters_;
   const LightAim& aim_;
   std::uint64_t seed_;
-  bool alphaFilters_;
   float latticeDensity_;  // R/4π: the lattice's samples per steradian
   float sceneScale_;
   int skySamples_ = 0, emitterSamples_ = 0, spotSamples_ = 0;

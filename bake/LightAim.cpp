@@ -15,10 +15,11 @@ constexpr int kNearestSurfaceRays = 256;
 
 }  // namespace
 
-LightAim::LightAim(const Scene& scene, const RayTracer& tracer)
+LightAim::LightAim(const Scene& scene, const RayTracer& tracer, bool enabled)
     : scene_(scene), sceneScale_(scene.bounds.isEmpty() ? 1.0f : scene.bounds.diagonal().norm()) {
   power_.assign(scene.lights.size(), 0.0);
   nearestSurface_.assign(scene.lights.size(), std::numeric_limits<float>::infinity());
+  if (!enabled) return;
   std::vector<Ray> rays;
   for (std::size_t l = 0; l < scene.lights.size(); ++l) {
     const PunctualLight& light = scene.lights[l];
@@ -43,19 +44,26 @@ LightAim::LightAim(const Scene& scene, const RayTracer& tracer)
 
 LightAim::Aim LightAim::aim(int light, const Eigen::Vector3f& from) const {
   Aim a;
-  if (!aimsAt(light)) return a;
+  a.weight = weight(light, from);
+  if (!(a.weight > 0.0)) return a;
   const Eigen::Vector3f d = scene_.lights[light].position - from;
   const float distance = d.norm();
-  // A point on the light, or so close that its distance is lost in the scene's size, has no
-  // direction to aim along.
-  if (!(distance > 1e-6f * sceneScale_)) return a;
   a.axis = d / distance;
   // θ₀ bounded so that the aim never narrows below a thousandth of a radian (float directions)
   // nor widens past a mild preference for the light's half of the sphere.
   const float theta = std::clamp(nearestSurface_[light] / distance, 1e-3f, 1.0f);
   a.width = 0.5f * theta * theta;
-  a.weight = float(power_[light] / (double(distance) * double(distance)));
+  a.logSpan = std::log1p(2.0f / a.width);
   return a;
+}
+
+double LightAim::weight(int light, const Eigen::Vector3f& from) const {
+  if (!aimsAt(light)) return 0.0;
+  // A point on the light, or so close that its distance is lost in the scene's size, has no
+  // direction to aim along.
+  const float squared = (scene_.lights[light].position - from).squaredNorm();
+  if (!(squared > 1e-12f * sceneScale_ * sceneScale_)) return 0.0;
+  return power_[light] / double(squared);
 }
 
 float LightAim::density(const Aim& aim, const Eigen::Vector3f& direction) {
@@ -64,13 +72,13 @@ float LightAim::density(const Aim& aim, const Eigen::Vector3f& direction) {
   // u = 1 − cos θ = |ω − axis|²/2 for unit vectors, which keeps its precision near the axis,
   // where 1 − ω·axis loses it all to rounding (u₀ can be 5e-7).
   const float u = 0.5f * (direction - aim.axis).squaredNorm();
-  return 1.0f / (2.0f * float(M_PI) * std::log1p(2.0f / aim.width) * (u + aim.width));
+  return 1.0f / (2.0f * float(M_PI) * aim.logSpan * (u + aim.width));
 }
 
 Eigen::Vector3f LightAim::direction(const Aim& aim, float xi1, float xi2) {
   // u = u₀·((1 + 2/u₀)^ξ − 1) inverts the distribution of u.
   const float u0 = aim.width;
-  const float u = std::min(2.0f, u0 * std::expm1(xi1 * std::log1p(2.0f / u0)));
+  const float u = std::min(2.0f, u0 * std::expm1(xi1 * aim.logSpan));
   const float cosTheta = 1.0f - u, sinTheta = std::sqrt(std::max(0.0f, u * (2.0f - u)));
   const float phi = 2.0f * float(M_PI) * xi2;
   // An orthonormal frame about the axis (Duff et al. 2017).

@@ -16,9 +16,10 @@ namespace baker {
 // A point weighs lights by power over squared distance when it shares samples among them.
 class LightAim {
  public:
-  // Traces a few rays from each point and spot light to find its nearest surface; directional
-  // lights, lights with no surface near and lights of no power are not aimed at.
-  LightAim(const Scene& scene, const RayTracer& tracer);
+  // Traces 256 rays from each point and spot light, once, to find its nearest surface;
+  // directional lights, lights with no surface near and lights of no power are not aimed at.
+  // Not `enabled`: aims at nothing and traces nothing (no punctual light reaches a surface).
+  LightAim(const Scene& scene, const RayTracer& tracer, bool enabled);
 
   bool empty() const { return lights_.empty(); }
   const std::vector<int>& lights() const { return lights_; }  // scene lights aimed at
@@ -27,9 +28,12 @@ class LightAim {
   struct Aim {
     Eigen::Vector3f axis{0.0f, 0.0f, 1.0f};  // unit, towards the light
     float width = 0.0f;                      // u₀; 0: no aim (the point is on the light)
-    float weight = 0.0f;                     // power / D²
+    double weight = 0.0;                     // power / D²; 0 with no aim (double: it may exceed float)
+    float logSpan = 0.0f;                    // ln(1 + 2/u₀), the density's normalisation
   };
   Aim aim(int light, const Eigen::Vector3f& from) const;
+  // aim(light, from).weight alone, without the rest of the aim.
+  double weight(int light, const Eigen::Vector3f& from) const;
 
   // Per steradian, of one sample of `aim` along unit `direction`.
   static float density(const Aim& aim, const Eigen::Vector3f& direction);

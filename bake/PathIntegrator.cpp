@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <limits>
 
 #include "bake/DirectView.h"
@@ -126,6 +125,7 @@ struct PathIntegrator::Scratch {
     Eigen::Vector3f throughput;  // to the aimed ray's first hit, with the aim's MIS share
   };
   ScratchBuffer<Aimed> aimed;
+  ScratchBuffer<LightAim::Aim> aims;  // of one vertex, per light aimed at
   ScratchBuffer<Ray> shadowRays;
 };
 
@@ -137,7 +137,7 @@ PathIntegrator::PathIntegrator(const Scene& scene, const RayTracer& tracer, cons
       sampleEmitters_(settings.emissiveLights && !emitters_.empty()),
       sampleEnvironment_(settings.environment && scene.environment.emits()),
       textured_(!scene.images.empty()),
-      lightAim_(scene, tracer),
+      lightAim_(scene, tracer, settings.punctualLights && settings.bounces > 0),
       aimFromVertices_(settings.punctualLights && settings.bounces >= 2 && !lightAim_.empty()),
       sceneScale_(scene.bounds.isEmpty() ? 1.0f : scene.bounds.diagonal().norm()) {}
 
@@ -256,7 +256,7 @@ void PathIntegrator::addNextEvents(Vertex* vertices, int count, Scratch& scratch
       // Reached by a continuation from a vertex that also aimed at the lights: the lights'
       // terms here share with that aim.
       const bool aimedFrom = !firstHits && aimFromVertices_ && v.arrivalPdf > 0.0f;
-      const float aimTotal = aimedFrom ? aimWeights(v.previous) : 0.0f;
+      const double aimTotal = aimedFrom ? aimWeights(v.previous) : 0.0;
       for (std::size_t l = 0; l < scene_.lights.size(); ++l) {
         const PunctualLight& light = scene_.lights[l];
         Eigen::Vector3f toLight;
@@ -279,9 +279,9 @@ void PathIntegrator::addNextEvents(Vertex* vertices, int count, Scratch& scratch
         if (light.type != PunctualLight::Type::Directional) {
           if (firstHits)
             share = firstHits->sampler->latticeSpotWeight(*firstHits, int(l), directions[v.path]);
-          else if (aimTotal > 0.0f) {
+          else if (aimTotal > 0.0) {
             const LightAim::Aim aim = lightAim_.aim(int(l), v.previous);
-            share = powerHeuristic(v.arrivalPdf, aim.weight / aimTotal * LightAim::density(aim, v.arrival));
+            share = powerHeuristic(v.arrivalPdf, float(aim.weight / aimTotal) * LightAim::density(aim, v.arrival));
           }
         }
         rays[shadowRays] = {v.origin, toLight, 0.0f, distance};
@@ -377,9 +377,9 @@ void PathIntegrator::addNextEvents(Vertex* vertices, int count, Scratch& scratch
   }
 }
 
-float PathIntegrator::aimWeights(const Eigen::Vector3f& from) const {
-  float total = 0.0f;
-  for (const int l : lightAim_.lights()) total += lightAim_.aim(l, from).weight;
+double PathIntegrator::aimWeights(const Eigen::Vector3f& from) const {
+  double total = 0.0;
+  for (const int l : lightAim_.lights()) total += lightAim_.weight(l, from);
   return total;
 }
 
@@ -387,44 +387,46 @@ void PathIntegrator::aimAtLights(Vertex* vertices, int count, Scratch& scratch, 
                                  RayCounts* counts) const {
   // Each vertex aims one direction near a light (chosen by power over squared distance), and
   // its first hit takes that light's next-event term, weighted against the continuation's
-  // next vertex, whose term aimDensity weights the other way (power heuristic).
+  // next vertex, whose term addNextEvents weights the other way (power heuristic).
   Ray* rays = scratch.rays.reserve(std::size_t(count));
   Scratch::Aimed* aimed = scratch.aimed.reserve(std::size_t(count));
-  int aims = 0;
+  const std::vector<int>& aimable = lightAim_.lights();
+  LightAim::Aim* aims = scratch.aims.reserve(aimable.size());
+  int aimedRays = 0;
   for (int k = 0; k < count; ++k) {
     Vertex& v = vertices[k];
     const float xiChoice = v.random.uniform(), xi1 = v.random.uniform(), xi2 = v.random.uniform();
-    const float total = aimWeights(v.origin);
-    if (!(total > 0.0f)) continue;
-    float running = 0.0f;
-    int light = -1;
-    LightAim::Aim aim;
-    for (const int l : lightAim_.lights()) {
-      aim = lightAim_.aim(l, v.origin);
-      light = l;
-      running += aim.weight;
-      if (xiChoice * total < running) break;
+    double total = 0.0;
+    for (std::size_t j = 0; j < aimable.size(); ++j) {
+      aims[j] = lightAim_.aim(aimable[j], v.origin);
+      total += aims[j].weight;
     }
+    if (!(total > 0.0)) continue;
+    std::size_t j = 0;
+    for (double running = aims[0].weight; j + 1 < aimable.size() && !(xiChoice * total < running);)
+      running += aims[++j].weight;
+    const int light = aimable[j];
+    const LightAim::Aim& aim = aims[j];
     if (!(aim.width > 0.0f)) continue;
     const Eigen::Vector3f direction = LightAim::direction(aim, xi1, xi2);
     const float cosine = v.normal.dot(direction);
     if (cosine <= 0.0f) continue;
-    const float density = aim.weight / total * LightAim::density(aim, direction);
+    const float density = float(aim.weight / total) * LightAim::density(aim, direction);
     const float bsdfPdf = cosine * kInvPi;
     // (ρ/π)·cosθ / pdf, times the aim's share.
     const Eigen::Vector3f throughput =
         v.throughput.cwiseProduct(v.albedo) * (bsdfPdf / density * powerHeuristic(density, bsdfPdf));
     if (!(throughput.maxCoeff() > 0.0f) || !throughput.allFinite()) continue;
-    rays[aims] = {v.origin, direction, 0.0f, std::numeric_limits<float>::infinity()};
-    aimed[aims++] = {v.path, light, throughput};
+    rays[aimedRays] = {v.origin, direction, 0.0f, std::numeric_limits<float>::infinity()};
+    aimed[aimedRays++] = {v.path, light, throughput};
   }
-  Ray* shadow = scratch.shadowRays.reserve(std::size_t(aims));
-  Scratch::Pending* pending = scratch.pending.reserve(std::size_t(aims));
+  Ray* shadow = scratch.shadowRays.reserve(std::size_t(aimedRays));
+  Scratch::Pending* pending = scratch.pending.reserve(std::size_t(aimedRays));
   int shadowRays = 0;
   Hit hits[8];
   SurfacePoint surfaces[8];
-  for (int first = 0; first < aims; first += 8) {
-    const int n = std::min(8, aims - first);
+  for (int first = 0; first < aimedRays; first += 8) {
+    const int n = std::min(8, aimedRays - first);
     tracer_.intersect8(rays + first, n, hits);
     counts->aimedBounce += n;
     locateSurfaces(hits, n, surfaces);

@@ -59,7 +59,7 @@ class PathIntegrator {
                    RayCounts* counts) const;
   // Σ over the lights aimed at of their weight from `from`: a vertex there aims at light l with
   // probability aim(l).weight / Σ.
-  float aimWeights(const Eigen::Vector3f& from) const;
+  double aimWeights(const Eigen::Vector3f& from) const;
   // Returns how many vertices the continued paths made (in place of the old ones).
   int continuePaths(Vertex* vertices, int count, bool keepVertices, Scratch& scratch, Eigen::Vector3f* radiance,
                     RayCounts* counts) const;

@@ -68,7 +68,11 @@ struct ProbeBaker::ChannelGroup {
   // Per rotation: functions × rays, radiance → irradiance. Row-major, so that each coefficient
   // is one contiguous dot product with a probe's contiguous samples.
   std::vector<Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> fromSamples;
-  Eigen::MatrixXd fromPunctualSh;            // functions × PunctualAtProbe::shCount(): arrivals → irradiance
+  Eigen::MatrixXd fromPunctualSh;            // functions × PunctualAtProbe::shCount(): lights → irradiance
+  // functions × SH count at the samples' order: direct-view samples → irradiance, the lattice's
+  // own SH→irradiance operator, so that the samples and the lattice's share of the same light
+  // are projected alike.
+  Eigen::MatrixXd fromDirectSh;
   Eigen::MatrixXd gram;                      // for the non-negative solve
 };
 
@@ -84,6 +88,7 @@ ProbeBaker::ProbeBaker(const Scene& scene, const RayTracer& tracer, const Basis&
   const DirectionSet fibonacci = sphericalFibonacci(settings.rays);
   weights_ = fibonacci.weights;
   shOrder_ = std::min(resolvableShOrder(fibonacci.size()), kMaxSampleShOrder);
+  directHarmonics_ = SphericalHarmonics(shOrder_);
   // Each rotation's SH fit of the samples serves every function set of the basis. Only the
   // first rotation's conditioning is computed: the others have the same spectrum.
   const SphericalHarmonics sampleSh(shOrder_);
@@ -96,7 +101,7 @@ ProbeBaker::ProbeBaker(const Scene& scene, const RayTracer& tracer, const Basis&
     shFits.emplace_back(sampleSh, set, basis.name() + " (SH fit of the samples)",
                         r == 0 ? SampledFit::Conditioning::Check : SampledFit::Conditioning::CheckedByRotation);
   }
-  const bool arrivalsAtProbe = (settings.transport.directPunctual && !punctual_.empty()) || !directView_.empty();
+  const bool punctualAtProbe = settings.transport.directPunctual && !punctual_.empty();
   for (int c = 0; c < 3; ++c) {
     if (c > 0 && &basis.functions(c) == &basis.functions(c - 1)) {
       ++groups_.back().channelCount;
@@ -111,8 +116,9 @@ ProbeBaker::ProbeBaker(const Scene& scene, const RayTracer& tracer, const Basis&
     // G⁻¹ B_sh C after each rotation's fit P: samples → irradiance coefficients in one operator.
     const Eigen::MatrixXd fromSh = ops.irradianceFromSh(shOrder_, settings.projection.window);
     for (const SampledFit& fit : shFits) group.fromSamples.push_back(fit.after(fromSh).cast<float>());
-    if (arrivalsAtProbe)
+    if (punctualAtProbe)
       group.fromPunctualSh = ops.irradianceFromSh(punctual_.shOrder(), settings.projection.window);
+    if (!directView_.empty()) group.fromDirectSh = fromSh;
     if (settings.projection.nonNegative) group.gram = ops.gram();
     groups_.push_back(std::move(group));
   }
@@ -137,11 +143,30 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
   thread_local ScratchBuffer<float> sampleStore;
   Eigen::Map<Eigen::MatrixXf> columns(sampleStore.reserve(std::size_t(rays) * 4 * std::size_t(p)), rays, 4 * p);
   const bool punctualAtProbe = settings_.transport.directPunctual && !punctual_.empty();
-  const bool arrivalsAtProbe = punctualAtProbe || !directView_.empty();
-  Eigen::MatrixXd punctualSh;
-  const int shCount = punctual_.shCount();
-  if (arrivalsAtProbe) punctualSh.setZero(shCount, 3 * p);
-  std::atomic<bool> anyArrivals{false};
+  // Arrivals, per probe and channel in the colour space: SH coefficients of the punctual lights
+  // (to their own order) and of the direct-view samples (to the lattice's).
+  struct ArrivalHarmonics {
+    explicit ArrivalHarmonics(const SphericalHarmonics& h) : harmonics(&h) {}
+    const SphericalHarmonics* harmonics;
+    Eigen::MatrixXd sh;  // count × 3p
+    std::atomic<bool> any{false};
+  };
+  ArrivalHarmonics punctualSh(punctual_.harmonics()), directSh(directHarmonics_);
+  if (punctualAtProbe) punctualSh.sh.setZero(punctual_.shCount(), 3 * p);
+  if (!directView_.empty()) directSh.sh.setZero(directHarmonics_.count(), 3 * p);
+  auto addArrivals = [&](ArrivalHarmonics& set, const std::vector<PunctualAtProbe::Arrival>& arrivals, int taskIndex) {
+    if (arrivals.empty()) return;
+    set.any = true;
+    const int count = set.harmonics->count();
+    thread_local std::vector<double> sh;
+    sh.assign(3 * std::size_t(count), 0.0);
+    PunctualAtProbe::addHarmonics(*set.harmonics, arrivals, sh.data());
+    for (int i = 0; i < count; ++i) {
+      const Eigen::Vector3d rgb(sh[i], sh[count + i], sh[2 * count + i]);
+      const Eigen::Vector3d value = toColorSpace(space, rgb.cast<float>()).cast<double>();
+      for (int c = 0; c < 3; ++c) set.sh(i, c * p + taskIndex) = value[c];
+    }
+  };
 
   struct Block {
     int rotation, first, count;
@@ -185,17 +210,8 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
         std::vector<PunctualAtProbe::Arrival> lights, direct;
         if (punctualAtProbe) lights = punctual_.visibleLights(task.position, &rangeCounts);
         if (!directView_.empty()) directView_.sample(view, task.id, &direct, &rangeCounts);
-        if (!lights.empty() || !direct.empty()) {
-          anyArrivals = true;
-          std::vector<double> sh(3 * shCount, 0.0);
-          punctual_.addHarmonics(lights, sh.data());
-          punctual_.addHarmonics(direct, sh.data());
-          for (int i = 0; i < shCount; ++i) {
-            const Eigen::Vector3d rgb(sh[i], sh[shCount + i], sh[2 * shCount + i]);
-            const Eigen::Vector3d value = toColorSpace(space, rgb.cast<float>()).cast<double>();
-            for (int c = 0; c < 3; ++c) punctualSh(i, c * p + taskIndex) = value[c];
-          }
-        }
+        addArrivals(punctualSh, lights, taskIndex);
+        addArrivals(directSh, direct, taskIndex);
         if (samples) {
           ProbeSamples& probeSamples = (*samples)[taskIndex];
           probeSamples.directions = dirs;
@@ -237,10 +253,12 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
               float(1.0 / M_PI), visibility + std::size_t(order[block.first + within]) * visibilityPerProbe_);
   }
 
-  if (anyArrivals) {
+  for (const auto& [set, fromSh] : {std::pair{&punctualSh, &ChannelGroup::fromPunctualSh},
+                                     std::pair{&directSh, &ChannelGroup::fromDirectSh}}) {
+    if (!set->any) continue;
     for (const ChannelGroup& group : groups_) {
       const Eigen::MatrixXd result =
-          group.fromPunctualSh * punctualSh.middleCols(group.firstChannel * p, group.channelCount * p);
+          group.*fromSh * set->sh.middleCols(group.firstChannel * p, group.channelCount * p);
       for (int c = 0; c < group.channelCount; ++c) {
         const int offset = basis_.coefficientOffset(group.firstChannel + c);
         for (int q = 0; q < p; ++q) {

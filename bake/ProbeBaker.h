@@ -102,6 +102,7 @@ class ProbeBaker {
   DirectView directView_;
   std::vector<std::vector<Eigen::Vector3f>> directions_;  // per rotation
   std::vector<double> weights_;
+  SphericalHarmonics directHarmonics_{0};  // the direct-view samples' expansion: the lattice's order
   std::vector<ChannelGroup> groups_;
   int coefficientsPerProbe_ = 0;
   int visibilityPerProbe_ = 0;

@@ -46,11 +46,13 @@ int PunctualAtProbe::shOrderFor(const SphericalFunctions& functions) {
   return degree >= 0 ? std::min(degree, kMaxShOrder) : kMaxShOrder;
 }
 
-void PunctualAtProbe::addHarmonics(const std::vector<Arrival>& arrivals, double* sh) const {
-  const int count = shCount();
-  std::vector<double> y(count);
+void PunctualAtProbe::addHarmonics(const SphericalHarmonics& harmonics, const std::vector<Arrival>& arrivals,
+                                   double* sh) {
+  const int count = harmonics.count();
+  thread_local std::vector<double> y;
+  y.resize(count);
   for (const Arrival& a : arrivals) {
-    harmonics_.evaluate(a.direction.cast<double>(), y.data());
+    harmonics.evaluate(a.direction.cast<double>(), y.data());
     for (int c = 0; c < 3; ++c)
       for (int i = 0; i < count; ++i) sh[c * count + i] += double(a.irradiance[c]) * y[i];
   }

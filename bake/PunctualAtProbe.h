@@ -33,6 +33,7 @@ class PunctualAtProbe {
   bool empty() const { return scene_.lights.empty(); }
   int shOrder() const { return harmonics_.order(); }
   int shCount() const { return harmonics_.count(); }
+  const SphericalHarmonics& harmonics() const { return harmonics_; }
   // E⊥ and direction of each light at `position`, unshadowed (zero irradiance when behind a spot's cone).
   struct Arrival {
     Eigen::Vector3f direction;
@@ -44,7 +45,9 @@ class PunctualAtProbe {
   // The lights that reach `position` unoccluded (shadow rays from the probe).
   std::vector<Arrival> visibleLights(const Eigen::Vector3f& position, RayCounts* counts) const;
   // Adds E⊥·Y(ω) in RGB of each arrival to sh (shCount() × 3, column-major).
-  void addHarmonics(const std::vector<Arrival>& arrivals, double* sh) const;
+  void addHarmonics(const std::vector<Arrival>& arrivals, double* sh) const { addHarmonics(harmonics_, arrivals, sh); }
+  // The same to the order of `harmonics` (harmonics.count() × 3).
+  static void addHarmonics(const SphericalHarmonics& harmonics, const std::vector<Arrival>& arrivals, double* sh);
 
  private:
   const Scene& scene_;

@@ -49,6 +49,7 @@ TEST(LightAim, DirectionsFollowTheDensity) {
     LightAim::Aim aim;
     aim.axis = Eigen::Vector3f(0.3f, -0.5f, 0.8f).normalized();
     aim.width = width;
+    aim.logSpan = std::log1p(2.0f / width);
     PathRandom random(3, 5, 7);
     double inverse = 0.0;
     const int n = 400000;

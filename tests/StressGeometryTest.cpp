@@ -115,10 +115,11 @@ TEST_F(StressGeometry, SliversAndNeedlesLeaveNoCracksAndFiniteNormals) {
   }
 }
 
-// Two emitters in one plane, one red and one green: each lattice ray sees one or the other, the
-// same one on every run and thread count, while the emitter samples, whose visibility rays stop
-// short of the point, see both. So red plus green lies between what one emitter of both colours
-// gives and twice that, and the bake is deterministic.
+// Two emitters in one plane, one red and one green: each ray sees one or the other, the lattice's
+// and the emitter samples' alike (a sample counts only where its ray first hits the triangle it
+// sampled), so red plus green is what one emitter of both gives, to the samples' noise (the two
+// scenes sample their emitters differently); and the choice is the same on every run and thread
+// count.
 TEST_F(StressGeometry, CoincidentSurfacesBakeDeterministicallyAsOneOrTheOther) {
   GltfBuilder gltf;
   const int red = gltf.material({{"emissiveFactor", {1, 0, 0}}, {"doubleSided", true}});
@@ -148,9 +149,7 @@ TEST_F(StressGeometry, CoincidentSurfacesBakeDeterministicallyAsOneOrTheOther) {
       const Eigen::Vector3f mixed = basis_->reconstruct(one.probe(p), n);
       const Eigen::Vector3f both = basis_->reconstruct(yellow.probe(p), n);
       ASSERT_TRUE(mixed.allFinite());
-      const float lo = std::min(both.x(), 2.0f * both.x()), hi = std::max(both.x(), 2.0f * both.x());
-      EXPECT_GE(mixed.x() + mixed.y(), lo - 1e-3f * float(M_PI)) << "probe " << p;
-      EXPECT_LE(mixed.x() + mixed.y(), hi + 1e-3f * float(M_PI)) << "probe " << p;
+      EXPECT_NEAR(mixed.x() + mixed.y(), both.x(), 0.01f * std::abs(both.x()) + 1e-3f * float(M_PI)) << "probe " << p;
     }
 }
 

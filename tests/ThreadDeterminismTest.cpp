@@ -11,14 +11,18 @@ namespace {
 
 // Bricks are shared out between threads, and within a brick the probes' placement and tracing
 // are too: every number of threads must give the same bits and the same ray counts. default_room
-// with a point light added has every effect a bake simulates but the sky: bounces, an emissive
-// panel, a punctual light seen by the probes and by every bounce, probes in walls.
+// with a point light and a sky map added has every effect a bake simulates: bounces, an
+// emissive panel, a punctual light seen by the probes and by every bounce, a sky with a bright
+// spot through the open side, probes in walls, and every kind of direct-view sample and aim.
 TEST(ThreadDeterminism, EveryThreadCountBakesTheSameVolume) {
   Scene scene = loadGltf(test::sourcePath("data/default_room/default_room.gltf"));
   PunctualLight lamp;
   lamp.position = scene.bounds.center();
   lamp.intensity = 5.0f;
   scene.lights.push_back(lamp);
+  std::vector<float> sky(16 * 8 * 3, 0.2f);
+  for (int c = 0; c < 3; ++c) sky[(3 * 16 + 12) * 3 + c] = 200.0f;
+  scene.environment = Environment::latLong(16, 8, sky, 1.0f, 0.0f, "spot sky");
   const RayTracer tracer(scene);
   const auto basis = makeBasis("ad-ycocg");
   const ProbeGrid grid = makeProbeGrid(scene.bounds, 0.4, 100000);
@@ -33,6 +37,10 @@ TEST(ThreadDeterminism, EveryThreadCountBakesTheSameVolume) {
   ASSERT_GT(oneStats.relocatedProbes + oneStats.invalidProbes, 0) << "no probe exercises the placement";
   ASSERT_GT(oneStats.rays.directPunctualShadow, 0) << "no probe sees the point light";
   ASSERT_GT(oneStats.rays.punctualShadow, 0) << "no bounce sees the point light";
+  ASSERT_GT(oneStats.rays.environmentShadow, 0) << "no bounce samples the sky";
+  ASSERT_GT(oneStats.rays.directView, 0) << "no direct-view samples";
+  ASSERT_GT(oneStats.rays.directViewShadow, 0) << "no aim near the light found a lit surface";
+  ASSERT_GT(oneStats.rays.aimedBounce, 0) << "no path vertex aimed at the light";
   for (int threads : {2, 3}) {
     BakeStats stats;
     const Volume other = bakeWith(threads, &stats);
@@ -46,6 +54,8 @@ TEST(ThreadDeterminism, EveryThreadCountBakesTheSameVolume) {
     EXPECT_EQ(stats.rays.validity, oneStats.rays.validity) << threads << " threads";
     EXPECT_EQ(stats.rays.bounce, oneStats.rays.bounce) << threads << " threads";
     EXPECT_EQ(stats.rays.directPunctualShadow, oneStats.rays.directPunctualShadow) << threads << " threads";
+    EXPECT_EQ(stats.rays.directView, oneStats.rays.directView) << threads << " threads";
+    EXPECT_EQ(stats.rays.aimedBounceShadow, oneStats.rays.aimedBounceShadow) << threads << " threads";
   }
 }
 
