@@ -129,6 +129,7 @@ TEST_F(StressGeometry, CoincidentSurfacesBakeDeterministicallyAsOneOrTheOther) {
   const Scene scene = loadGltf(gltf.write(dir_, "coincident"));
   const RayTracer tracer(scene);
   BakeSettings settings;
+  settings.rays = 4096;  // the samples of the two scenes differ: keep their noise under 1 %
   settings.transport.bounces = 0;
   const ProbeGrid grid = makeProbeGrid(scene.bounds, 0.25, 1000);
   const auto bakeWith = [&](int threads) {
