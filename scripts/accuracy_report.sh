@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerates README's "What accuracy costs": `baker accuracy` on the bundled scene and on one
+# Regenerates docs/ACCURACY.md's "What accuracy costs": `baker accuracy` on the bundled scene and on one
 # Khronos sample scene (from ../shared/data, when present), writing docs/accuracy/<scene>/
 # (CSV, JSON, SVG plot, Markdown table). Run from the repository root after a build.
 set -euo pipefail

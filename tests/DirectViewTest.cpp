@@ -10,6 +10,7 @@
 #include "bake/ShBasis.h"
 #include "scene/GltfLoader.h"
 #include "scene/RayTracer.h"
+#include "tests/SeedStatistics.h"
 #include "tests/TestData.h"
 
 // What a probe sees directly, sampled by importance and combined with the lattice by MIS
@@ -18,18 +19,7 @@
 namespace baker {
 namespace {
 
-struct Spread {
-  double mean = 0.0, standardError = 0.0;
-};
-Spread overSeeds(const std::vector<double>& v) {
-  Spread s;
-  for (double x : v) s.mean += x;
-  s.mean /= double(v.size());
-  double squares = 0.0;
-  for (double x : v) squares += (x - s.mean) * (x - s.mean);
-  s.standardError = std::sqrt(squares / double(v.size() - 1) / double(v.size()));
-  return s;
-}
+using test::overSeeds;
 
 std::vector<ProbeSamples> bakeSamples(const Scene& scene, const RayTracer& tracer, const BakeSettings& settings,
                                       const Eigen::Vector3f& position) {
@@ -86,7 +76,7 @@ TEST(DirectView, AimsAtALightStayUnbiasedAtFewRays) {
       EXPECT_FALSE(s.direct.empty()) << name << ": the aimed samples found the lit ground";
       values.push_back(sampledIrradiance(s, {0, -1, 0}).x());
     }
-    const Spread s = overSeeds(values);
+    const test::SeedStatistics s = overSeeds(values);
     EXPECT_NEAR(s.mean, expected, 0.002 * expected + 3.0 * s.standardError) << name;
     EXPECT_LT(s.standardError, 0.01 * expected) << name;
   }
@@ -130,7 +120,7 @@ TEST(DirectView, SkySamplesMakeASmallSunUnbiasedAtFewRays) {
     for (int c = 0; c < 3; ++c) values[c].push_back(e[c]);
   }
   for (int c = 0; c < 3; ++c) {
-    const Spread s = overSeeds(values[c]);
+    const test::SeedStatistics s = overSeeds(values[c]);
     EXPECT_NEAR(s.mean, exact[c], 0.002 * exact[c] + 3.0 * s.standardError) << "channel " << c;
     EXPECT_LT(s.standardError, 0.01 * exact[c]) << "channel " << c;
   }

@@ -16,6 +16,7 @@
 #include "scene/SceneCensus.h"
 #include "scene/SceneEffects.h"
 #include "scene/SceneOptions.h"
+#include "tests/SeedStatistics.h"
 #include "tests/TestData.h"
 
 // The baker against Blender Cycles: irradiance at the probes of the reference scenes, for the
@@ -88,18 +89,7 @@ std::vector<std::vector<Eigen::Vector3f>> bakeAxes(const Scene& scene, const Ray
   return out;
 }
 
-struct Statistics {
-  double mean = 0.0, standardError = 0.0;
-};
-Statistics overSeeds(const std::vector<double>& values) {
-  Statistics s;
-  for (double v : values) s.mean += v;
-  s.mean /= double(values.size());
-  double squares = 0.0;
-  for (double v : values) squares += (v - s.mean) * (v - s.mean);
-  s.standardError = std::sqrt(squares / double(values.size() - 1) / double(values.size()));
-  return s;
-}
+using test::overSeeds;
 
 // Rays per probe at which four seeds' standard error falls under 1 % of the scale on every
 // entry (scripts/reference_misses.py reports the variance per ray): the lamp's probes see spots
@@ -152,7 +142,7 @@ TEST_P(ReferenceIrradiance, FourSeedsMatchCyclesOnEveryProbeAxisAndChannel) {
         if (!(scale > 0.0)) continue;
         std::vector<double> values;
         for (const auto& run : seeds) values.push_back(run[p][a][channel]);
-        const Statistics s = overSeeds(values);
+        const test::SeedStatistics s = overSeeds(values);
         ++entries;
         if (std::abs(s.mean - expected) > 0.02 * scale + 3.0 * s.standardError || s.standardError >= 0.01 * scale)
           misses << "  probe " << p << " E(" << kAxes[a] << ") " << "rgb"[channel] << ": Cycles " << expected
@@ -203,7 +193,7 @@ TEST(ReferenceIrradiance, MeansOverSeedsAgreeAtRAndTwiceR) {
   }
   int compared = 0;
   for (int k = 0; k < 18; ++k) {
-    const Statistics x = overSeeds(atR[k]), y = overSeeds(atTwiceR[k]);
+    const test::SeedStatistics x = overSeeds(atR[k]), y = overSeeds(atTwiceR[k]);
     if (!(std::abs(x.mean) + std::abs(y.mean) > 1e-4)) continue;  // an axis facing away from all light
     ++compared;
     EXPECT_GT(x.standardError, 0.0) << "seeds that agree exactly are not independent";
