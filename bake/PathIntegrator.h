@@ -20,9 +20,11 @@ struct ProbeView;
 // diffuse reflections the path adds next-event estimates for punctual lights (shadow rays),
 // emissive triangles (chosen by power) and the sky (importance sampled), then continues along
 // a cosine-distributed direction; emissive triangles and the sky are combined with that
-// direction by multiple importance sampling (power heuristic), so each is counted once. Paths
-// whose weight has dropped below a quarter play Russian roulette. Every effect the settings
-// turn off costs no rays at all.
+// direction by multiple importance sampling (power heuristic), so each is counted once. Before
+// a path continues, its vertex also aims one ray near a punctual light (LightAim), whose first
+// hit takes that light's term, combined by MIS with the continuation's. Paths whose weight has
+// dropped below a quarter play Russian roulette. Every effect the settings turn off costs no
+// rays at all (LightAim's 256 rays per light, once per bake, only when lights reach surfaces).
 //
 // Work is a wavefront per probe: closest hits go to Embree eight at a time (rtcIntersect8),
 // shadow rays of one bounce as one stream (rtcOccluded1M), and the arithmetic of continuing

@@ -40,7 +40,7 @@ struct ProbeTask {
 struct ProbeSamples {
   std::vector<Eigen::Vector3f> directions;
   std::vector<double> weights;  // quadrature weights, Σ = 4π
-  std::vector<Eigen::Vector3f> radiance;
+  std::vector<Eigen::Vector3f> radiance;  // the lattice's MIS share of what each ray brought back
   std::vector<float> visibility;
   std::vector<PunctualAtProbe::Arrival> punctual;  // lights reaching the probe (direct-punctual)
   std::vector<DirectView::Arrival> direct;         // what DirectView sampled, MIS-weighted

@@ -167,7 +167,7 @@ def main():
             sys.stdout.flush()
     if args.markdown:
         with open(args.markdown, "w") as f:
-            f.write("| scene | reflections | rays | seeds | worst single-seed miss | entries beyond 5 %% (one seed) | "
+            f.write("| scene | reflections | rays | seeds | worst single-seed miss | entries beyond 5 % (one seed) | "
                     "worst miss of the mean | max standard error | variance per ray, max / median | "
                     "rays traced per probe |\n|---|---|---|---|---|---|---|---|---|---|\n")
             for r in report:
