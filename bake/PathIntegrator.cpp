@@ -97,6 +97,9 @@ struct PathIntegrator::Vertex {
   Eigen::Vector3f previous;
   Eigen::Vector3f arrival;
   float arrivalPdf = 0.0f;
+  // Σ of the lights' aim weights: from `previous` (as it aimed), then, once this vertex has
+  // aimed (aimAtLights), from its own origin, for the vertex its continuation makes.
+  double aimTotal = 0.0;
   int path = 0;
   PathRandom random{0, 0, 0};
 };
@@ -125,7 +128,7 @@ struct PathIntegrator::Scratch {
     Eigen::Vector3f throughput;  // to the aimed ray's first hit, with the aim's MIS share
   };
   ScratchBuffer<Aimed> aimed;
-  ScratchBuffer<LightAim::Aim> aims;  // of one vertex, per light aimed at
+  ScratchBuffer<double> aimWeights;  // of one vertex, per light aimed at
   ScratchBuffer<Ray> shadowRays;
 };
 
@@ -256,7 +259,7 @@ void PathIntegrator::addNextEvents(Vertex* vertices, int count, Scratch& scratch
       // Reached by a continuation from a vertex that also aimed at the lights: the lights'
       // terms here share with that aim.
       const bool aimedFrom = !firstHits && aimFromVertices_ && v.arrivalPdf > 0.0f;
-      const double aimTotal = aimedFrom ? aimWeights(v.previous) : 0.0;
+      const double aimTotal = aimedFrom ? v.aimTotal : 0.0;
       for (std::size_t l = 0; l < scene_.lights.size(); ++l) {
         const PunctualLight& light = scene_.lights[l];
         Eigen::Vector3f toLight;
@@ -377,12 +380,6 @@ void PathIntegrator::addNextEvents(Vertex* vertices, int count, Scratch& scratch
   }
 }
 
-double PathIntegrator::aimWeights(const Eigen::Vector3f& from) const {
-  double total = 0.0;
-  for (const int l : lightAim_.lights()) total += lightAim_.weight(l, from);
-  return total;
-}
-
 void PathIntegrator::aimAtLights(Vertex* vertices, int count, Scratch& scratch, Eigen::Vector3f* radiance,
                                  RayCounts* counts) const {
   // Each vertex aims one direction near a light (chosen by power over squared distance), and
@@ -391,22 +388,23 @@ void PathIntegrator::aimAtLights(Vertex* vertices, int count, Scratch& scratch, 
   Ray* rays = scratch.rays.reserve(std::size_t(count));
   Scratch::Aimed* aimed = scratch.aimed.reserve(std::size_t(count));
   const std::vector<int>& aimable = lightAim_.lights();
-  LightAim::Aim* aims = scratch.aims.reserve(aimable.size());
+  double* weights = scratch.aimWeights.reserve(aimable.size());
   int aimedRays = 0;
   for (int k = 0; k < count; ++k) {
     Vertex& v = vertices[k];
     const float xiChoice = v.random.uniform(), xi1 = v.random.uniform(), xi2 = v.random.uniform();
     double total = 0.0;
     for (std::size_t j = 0; j < aimable.size(); ++j) {
-      aims[j] = lightAim_.aim(aimable[j], v.origin);
-      total += aims[j].weight;
+      weights[j] = lightAim_.weight(aimable[j], v.origin);
+      total += weights[j];
     }
+    v.aimTotal = total;
     if (!(total > 0.0)) continue;
     std::size_t j = 0;
-    for (double running = aims[0].weight; j + 1 < aimable.size() && !(xiChoice * total < running);)
-      running += aims[++j].weight;
+    for (double running = weights[0]; j + 1 < aimable.size() && !(xiChoice * total < running);)
+      running += weights[++j];
     const int light = aimable[j];
-    const LightAim::Aim& aim = aims[j];
+    const LightAim::Aim aim = lightAim_.aim(light, v.origin);
     if (!(aim.width > 0.0f)) continue;
     const Eigen::Vector3f direction = LightAim::direction(aim, xi1, xi2);
     const float cosine = v.normal.dot(direction);
@@ -518,6 +516,7 @@ int PathIntegrator::continuePaths(Vertex* vertices, int count, bool keepVertices
       const Eigen::Vector3f throughput = from.throughput;
       const int path = from.path;
       const PathRandom random = from.random;
+      const double aimTotal = from.aimTotal;
       const Ray& ray = rays[first + i];
       const float pdf = bsdfPdf[first + i];
       const Hit& hit = hits[i];
@@ -548,6 +547,7 @@ int PathIntegrator::continuePaths(Vertex* vertices, int count, bool keepVertices
         next.previous = ray.origin;
         next.arrival = ray.direction;
         next.arrivalPdf = pdf;
+        next.aimTotal = aimTotal;
         ++kept;
       }
     }

@@ -59,9 +59,6 @@ class PathIntegrator {
   // and the aimed ray finds it often (LightAim), both combined by MIS.
   void aimAtLights(Vertex* vertices, int count, Scratch& scratch, Eigen::Vector3f* radiance,
                    RayCounts* counts) const;
-  // Σ over the lights aimed at of their weight from `from`: a vertex there aims at light l with
-  // probability aim(l).weight / Σ.
-  double aimWeights(const Eigen::Vector3f& from) const;
   // Returns how many vertices the continued paths made (in place of the old ones).
   int continuePaths(Vertex* vertices, int count, bool keepVertices, Scratch& scratch, Eigen::Vector3f* radiance,
                     RayCounts* counts) const;
