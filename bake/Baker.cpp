@@ -48,6 +48,7 @@ Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basi
   const Eigen::Vector3i bricks = (grid.dims.array() + kBrickSize - 1) / kBrickSize;
   const int brickCount = bricks.x() * bricks.y() * bricks.z();
   std::vector<RayCounts> brickRays(brickCount);
+  std::vector<RoundTally> brickTallies(brickCount);
   std::atomic<std::int64_t> bricksDone{0};
 
   tbb::parallel_for(tbb::blocked_range<int>(0, brickCount, 1), [&](const tbb::blocked_range<int>& range) {
@@ -84,7 +85,7 @@ Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basi
         if (volume.states[candidate.id] != ProbeState::Invalid) tasks.push_back(candidate);
       coefficients.resize(tasks.size() * volume.coefficientsPerProbe);
       visibility.resize(tasks.size() * volume.visibilityPerProbe);
-      probeBaker.bake(tasks, coefficients.data(), visibility.data(), &counts);
+      probeBaker.bake(tasks, coefficients.data(), visibility.data(), &counts, nullptr, &brickTallies[b]);
       for (std::size_t t = 0; t < tasks.size(); ++t) {
         std::copy_n(coefficients.data() + t * volume.coefficientsPerProbe, volume.coefficientsPerProbe,
                     volume.coefficients.data() + tasks[t].id * volume.coefficientsPerProbe);
@@ -113,6 +114,7 @@ Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basi
     stats->raysPerProbe = settings.rays;
     stats->rays = RayCounts{};
     for (const RayCounts& c : brickRays) stats->rays += c;  // in brick order: the same sums every run
+    for (const RoundTally& t : brickTallies) stats->lattice += t;
     for (ProbeState s : volume.states) {
       stats->validProbes += s == ProbeState::Valid;
       stats->relocatedProbes += s == ProbeState::Relocated;

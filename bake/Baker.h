@@ -18,7 +18,8 @@ constexpr int kBrickSize = 8;
 struct BakeStats {
   std::int64_t probes = 0;
   std::int64_t bricks = 0;
-  int raysPerProbe = 0;
+  int raysPerProbe = 0;  // settings.rays: a fixed count, or the size of round 0's lattices
+  RoundTally lattice;    // lattice directions of the probes traced (the valid ones)
   RayCounts rays;
   std::int64_t validProbes = 0, relocatedProbes = 0, invalidProbes = 0;
   double conditionNumber = 0.0;  // worst of the basis's Gram matrices
@@ -29,8 +30,9 @@ struct BakeStats {
 };
 
 // Bakes every probe of `grid`: each traces settings.rays directions (one path each, see
-// PathIntegrator) and stores the irradiance they imply, E(n) = ∫ L max(0, n·ω) dω (full
-// irradiance, not E/π), in `basis`, plus its sky visibility. Probes inside geometry are moved
+// PathIntegrator), or with adaptive settings.convergence as many as it needs, and stores the
+// irradiance they imply, E(n) = ∫ L max(0, n·ω) dω (full irradiance, not E/π), in `basis`, plus
+// its sky visibility. Probes inside geometry are moved
 // out or, failing that, filled from valid neighbours (ProbeValidity). The result depends on
 // settings.transport.seed and not on the number of threads.
 // `progress`, when given, hears (bricks done, bricks in all) from worker threads.

@@ -57,26 +57,28 @@ struct Pending {
 }  // namespace
 
 DirectView::DirectView(const Scene& scene, const RayTracer& tracer, const TransportSettings& settings,
-                       const EmitterSampler& emitters, const LightAim& aim, int latticeRays)
+                       const EmitterSampler& emitters, const LightAim& aim)
     : scene_(scene),
       tracer_(tracer),
       emitters_(emitters),
       aim_(aim),
       seed_(settings.seed),
-      latticeDensity_(float(double(latticeRays) / (4.0 * M_PI))),
       sceneScale_(scene.bounds.isEmpty() ? 1.0f : scene.bounds.diagonal().norm()) {
-  const int perKind = std::max(1, (latticeRays + 3) / 4);
-  if (settings.environment && scene.environment.kind() == Environment::Kind::Map && scene.environment.emits())
-    skySamples_ = perKind;
-  if (settings.emission && !emitters.empty()) emitterSamples_ = perKind;
-  if (settings.punctualLights && settings.bounces > 0 && !aim.empty()) spotSamples_ = perKind;
+  samplesSky_ = settings.environment && scene.environment.kind() == Environment::Kind::Map && scene.environment.emits();
+  samplesEmitters_ = settings.emission && !emitters.empty();
+  samplesSpots_ = settings.punctualLights && settings.bounces > 0 && !aim.empty();
 }
 
-ProbeView DirectView::at(const Eigen::Vector3f& position) const {
+ProbeView DirectView::at(const Eigen::Vector3f& position, int latticeRays) const {
   ProbeView view;
   view.sampler = this;
   view.position = position;
+  view.latticeDensity = float(double(latticeRays) / (4.0 * M_PI));
+  const int perKind = std::max(1, (latticeRays + 3) / 4);
+  if (samplesSky()) view.skySamples = perKind;
+  if (samplesEmitters()) view.emitterSamples = perKind;
   if (!samplesSpots()) return view;
+  const int spotSamples = perKind;
   view.samples.assign(scene_.lights.size(), 0);
   view.aims.assign(scene_.lights.size(), {});
   double total = 0.0;
@@ -89,22 +91,22 @@ ProbeView DirectView::at(const Eigen::Vector3f& position) const {
   // Each aimed light gets its share of the samples by weight, at least one: fixed counts, so
   // that a light's density is its count times its aim's.
   for (const int l : view.aimed)
-    view.samples[l] = std::max(1, int(std::lround(double(spotSamples_) * view.aims[l].weight / total)));
+    view.samples[l] = std::max(1, int(std::lround(double(spotSamples) * view.aims[l].weight / total)));
   return view;
 }
 
-float DirectView::latticeSkyWeight(const Eigen::Vector3f& direction) const {
+float DirectView::latticeSkyWeight(const ProbeView& view, const Eigen::Vector3f& direction) const {
   if (!samplesSky()) return 1.0f;
-  return powerHeuristic(latticeDensity_, float(skySamples_) * scene_.environment.pdf(direction));
+  return powerHeuristic(view.latticeDensity, float(view.skySamples) * scene_.environment.pdf(direction));
 }
 
-float DirectView::latticeEmitterWeight(const Hit& hit, const Eigen::Vector3f& direction) const {
+float DirectView::latticeEmitterWeight(const ProbeView& view, const Hit& hit, const Eigen::Vector3f& direction) const {
   if (!samplesEmitters()) return 1.0f;
   // Where the samples never go, the lattice keeps it all.
   const float cosine = std::abs(hit.frontNormal.normalized().dot(direction));
   if (!(cosine >= kGrazing)) return 1.0f;
   const float pdf = emitters_.pdfArea(hit.instance, hit.triangle) * hit.distance * hit.distance / cosine;
-  return powerHeuristic(latticeDensity_, float(emitterSamples_) * pdf);
+  return powerHeuristic(view.latticeDensity, float(view.emitterSamples) * pdf);
 }
 
 float DirectView::spotDensity(const ProbeView& view, int light, const Eigen::Vector3f& direction) const {
@@ -113,7 +115,7 @@ float DirectView::spotDensity(const ProbeView& view, int light, const Eigen::Vec
 
 float DirectView::latticeSpotWeight(const ProbeView& view, int light, const Eigen::Vector3f& direction) const {
   if (view.aimed.empty()) return 1.0f;
-  return powerHeuristic(latticeDensity_, spotDensity(view, light, direction));
+  return powerHeuristic(view.latticeDensity, spotDensity(view, light, direction));
 }
 
 void DirectView::sample(const ProbeView& view, std::uint64_t probeId, std::vector<Arrival>* arrivals,
@@ -128,14 +130,14 @@ void DirectView::sampleSky(const ProbeView& view, std::uint64_t probeId, std::ve
                            RayCounts* counts) const {
   thread_local Pending pending;
   pending.start();
-  const float m = float(skySamples_);
+  const float m = float(view.skySamples);
   PathRandom shift(seed_, probeId, kSkyStream);
   const double s1 = shift.uniform(), s2 = shift.uniform();
-  for (int j = 0; j < skySamples_; ++j) {
+  for (int j = 0; j < view.skySamples; ++j) {
     const float xi1 = kronecker(s1, kR2[0], j), xi2 = kronecker(s2, kR2[1], j);
     const Environment::Sample s = scene_.environment.sample(xi1, xi2);
     if (!(s.pdf > 0.0f)) continue;
-    const float weightOverDensity = powerHeuristic(m * s.pdf, latticeDensity_) / (m * s.pdf);
+    const float weightOverDensity = powerHeuristic(m * s.pdf, view.latticeDensity) / (m * s.pdf);
     const Eigen::Vector3f irradiance = s.radiance * weightOverDensity;
     if (!(irradiance.maxCoeff() > 0.0f) || !irradiance.allFinite()) continue;
     pending.add({view.position, s.direction, 0.0f, std::numeric_limits<float>::infinity()},
@@ -157,10 +159,10 @@ void DirectView::sampleEmitters(const ProbeView& view, std::uint64_t probeId, st
   thread_local std::vector<Eigen::Vector3f> directions;
   candidates.clear();
   directions.clear();
-  const float m = float(emitterSamples_);
+  const float m = float(view.emitterSamples);
   PathRandom random(seed_, probeId, kEmitterStream);
   const double s1 = random.uniform(), s2 = random.uniform(), s3 = random.uniform();
-  for (int j = 0; j < emitterSamples_; ++j) {
+  for (int j = 0; j < view.emitterSamples; ++j) {
     const float xiChoice = kronecker(s1, kR3[0], j), xi1 = kronecker(s2, kR3[1], j), xi2 = kronecker(s3, kR3[2], j);
     const EmitterSampler::Sample s = emitters_.sample(xiChoice, xi1, xi2);
     const EmitterSampler::Emitter& e = *s.emitter;
@@ -177,7 +179,7 @@ void DirectView::sampleEmitters(const ProbeView& view, std::uint64_t probeId, st
       emission = surfaceEmission(surface);
     }
     const float density = m * e.pdfArea * distance * distance / std::abs(cosLight);
-    const Eigen::Vector3f irradiance = emission * (powerHeuristic(density, latticeDensity_) / density);
+    const Eigen::Vector3f irradiance = emission * (powerHeuristic(density, view.latticeDensity) / density);
     if (!(irradiance.maxCoeff() > 0.0f) || !irradiance.allFinite()) continue;
     candidates.push_back({{direction, irradiance, distance}, e.globalTriangle});
     directions.push_back(direction);
@@ -242,7 +244,7 @@ void DirectView::sampleSpots(const ProbeView& view, std::uint64_t probeId, std::
       if (light.type == PunctualLight::Type::Spot) intensity *= light.spotFalloff(-toLight.dot(light.direction));
       const float density = spotDensity(view, l, direction);
       const Eigen::Vector3f radiance = albedo.cwiseProduct(light.color) * (intensity * cosine / kPi);
-      const Eigen::Vector3f irradiance = radiance * (powerHeuristic(density, latticeDensity_) / density);
+      const Eigen::Vector3f irradiance = radiance * (powerHeuristic(density, view.latticeDensity) / density);
       if (!(irradiance.maxCoeff() > 0.0f) || !irradiance.allFinite()) continue;
       pending.add({origin, toLight, 0.0f, lightDistance}, {direction, irradiance, hit.distance});
     }

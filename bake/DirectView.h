@@ -14,11 +14,13 @@ namespace baker {
 
 class DirectView;
 
-// What one probe's direct-view samples share: where it is, and how it aims at the punctual
-// lights (DirectView::at).
+// What one lattice of a probe and its direct-view samples share: where the probe is, the
+// lattice's size, and how the samples aim at the punctual lights (DirectView::at).
 struct ProbeView {
   const DirectView* sampler = nullptr;
   Eigen::Vector3f position{0.0f, 0.0f, 0.0f};
+  float latticeDensity = 0.0f;  // R/4π: the lattice's samples per steradian
+  int skySamples = 0, emitterSamples = 0;
   // Per scene light: how many spot samples aim at it (0: none), and how.
   std::vector<int> samples;
   std::vector<LightAim::Aim> aims;
@@ -49,21 +51,22 @@ class DirectView {
  public:
   using Arrival = PunctualAtProbe::Arrival;
 
-  // latticeRays: the probe's lattice size R; each kind the scene calls for draws R/4 samples.
   DirectView(const Scene& scene, const RayTracer& tracer, const TransportSettings& settings,
-             const EmitterSampler& emitters, const LightAim& aim, int latticeRays);
+             const EmitterSampler& emitters, const LightAim& aim);
 
-  bool samplesSky() const { return skySamples_ > 0; }
-  bool samplesEmitters() const { return emitterSamples_ > 0; }
-  bool samplesSpots() const { return spotSamples_ > 0; }
+  bool samplesSky() const { return samplesSky_; }
+  bool samplesEmitters() const { return samplesEmitters_; }
+  bool samplesSpots() const { return samplesSpots_; }
   bool empty() const { return !samplesSky() && !samplesEmitters() && !samplesSpots(); }
 
-  ProbeView at(const Eigen::Vector3f& position) const;
+  // For a lattice of `latticeRays` directions from `position`: each kind the scene calls for
+  // draws R/4 samples.
+  ProbeView at(const Eigen::Vector3f& position, int latticeRays) const;
 
   // The lattice's share of the sky seen along a lattice direction.
-  float latticeSkyWeight(const Eigen::Vector3f& direction) const;
+  float latticeSkyWeight(const ProbeView& view, const Eigen::Vector3f& direction) const;
   // The lattice's share of the emission of a lattice hit (along unit `direction`).
-  float latticeEmitterWeight(const Hit& hit, const Eigen::Vector3f& direction) const;
+  float latticeEmitterWeight(const ProbeView& view, const Hit& hit, const Eigen::Vector3f& direction) const;
   // The lattice's share of scene light `light`'s next-event term at the first hit of the
   // lattice direction `direction`.
   float latticeSpotWeight(const ProbeView& view, int light, const Eigen::Vector3f& direction) const;
@@ -89,9 +92,8 @@ class DirectView {
   const EmitterSampler& emitters_;
   const LightAim& aim_;
   std::uint64_t seed_;
-  float latticeDensity_;  // R/4π: the lattice's samples per steradian
   float sceneScale_;
-  int skySamples_ = 0, emitterSamples_ = 0, spotSamples_ = 0;
+  bool samplesSky_ = false, samplesEmitters_ = false, samplesSpots_ = false;
 };
 
 }  // namespace baker

@@ -197,7 +197,7 @@ void PathIntegrator::trace(const Eigen::Vector3f& position, std::uint64_t probeI
       if (hit.missed()) {
         if (seeSky) {
           radiance[ray] = sky.radiance(directions[ray]);
-          if (directView) radiance[ray] *= directView->sampler->latticeSkyWeight(directions[ray]);
+          if (directView) radiance[ray] *= directView->sampler->latticeSkyWeight(*directView, directions[ray]);
         }
         continue;
       }
@@ -205,7 +205,7 @@ void PathIntegrator::trace(const Eigen::Vector3f& position, std::uint64_t probeI
       const Material& material = *surface.material;
       if (settings_.emission && (hit.frontFace || material.doubleSided) && material.emissive()) {
         radiance[ray] = surfaceEmission(surface);
-        if (directView) radiance[ray] *= directView->sampler->latticeEmitterWeight(hit, directions[ray]);
+        if (directView) radiance[ray] *= directView->sampler->latticeEmitterWeight(*directView, hit, directions[ray]);
       }
       Vertex& v = vertices[live];
       if (settings_.bounces > 0 && makeVertex(hit, surfaceAlbedo(surface), position, directions[ray],

@@ -24,14 +24,52 @@ namespace {
 // Probes traced per task: about a millisecond of work at 256 rays, far above the cost of a task.
 constexpr int kProbesPerTask = 8;
 
-// Uniformly random rotations (Shoemake's method) drawn from the seed: the same for a seed in
-// every bake, independent from seed to seed.
-Eigen::Matrix3f seededRotation(std::uint64_t seed, int index) {
-  PathRandom random(0x726f746174696f6eull ^ seed, std::uint64_t(index), 0);
+// A uniformly random rotation (Shoemake's method).
+Eigen::Matrix3f randomRotation(PathRandom random) {
   const double u1 = random.uniform(), u2 = 2.0 * M_PI * random.uniform(), u3 = 2.0 * M_PI * random.uniform();
   const double a = std::sqrt(1.0 - u1), b = std::sqrt(u1);
   const Eigen::Quaterniond q(b * std::cos(u3), a * std::sin(u2), a * std::cos(u2), b * std::sin(u3));
   return q.normalized().toRotationMatrix().cast<float>();
+}
+
+// The bake's lattice rotations, drawn from the seed: the same for a seed in every bake,
+// independent from seed to seed.
+Eigen::Matrix3f seededRotation(std::uint64_t seed, int index) {
+  return randomRotation(PathRandom(0x726f746174696f6eull ^ seed, std::uint64_t(index), 0));
+}
+
+// The rotation of a probe's lattice under adaptive convergence, the probe's own: the lattices of
+// neighbouring probes never line up.
+Eigen::Matrix3f latticeRotation(std::uint64_t seed, std::uint64_t probeId, int lattice) {
+  return randomRotation(PathRandom(0x6c61747469636573ull ^ seed, probeId, std::uint64_t(lattice)));
+}
+
+// The id a probe's lattice draws its random numbers with (PathIntegrator, DirectView): probe
+// ids stay below 2^40.
+std::uint64_t latticeProbeId(std::uint64_t probeId, int lattice) {
+  return probeId ^ (std::uint64_t(lattice) << 40);
+}
+
+const Eigen::Vector3f kAxes[6] = {Eigen::Vector3f::UnitX(),  -Eigen::Vector3f::UnitX(), Eigen::Vector3f::UnitY(),
+                                  -Eigen::Vector3f::UnitY(), Eigen::Vector3f::UnitZ(),  -Eigen::Vector3f::UnitZ()};
+
+void addAxisIrradiance(const std::vector<PunctualAtProbe::Arrival>& arrivals, RoundStatistics::AxisIrradiance* e) {
+  for (const PunctualAtProbe::Arrival& a : arrivals)
+    for (int n = 0; n < 6; ++n)
+      e->row(n) += a.irradiance.cast<double>().transpose() * double(std::max(0.0f, kAxes[n].dot(a.direction)));
+}
+
+// The six axis irradiances one lattice and its direct-view samples imply, RGB.
+RoundStatistics::AxisIrradiance latticeIrradiance(const Eigen::Vector3f* directions, const std::vector<double>& weights,
+                                                  const Eigen::Vector3f* radiance,
+                                                  const std::vector<PunctualAtProbe::Arrival>& direct) {
+  RoundStatistics::AxisIrradiance e = RoundStatistics::AxisIrradiance::Zero();
+  for (std::size_t r = 0; r < weights.size(); ++r)
+    for (int n = 0; n < 6; ++n)
+      e.row(n) += radiance[r].cast<double>().transpose() *
+                  (weights[r] * double(std::max(0.0f, kAxes[n].dot(directions[r]))));
+  addAxisIrradiance(direct, &e);
+  return e;
 }
 
 // The order punctual deltas are expanded to: the highest any of the basis's function sets needs.
@@ -82,11 +120,13 @@ ProbeBaker::ProbeBaker(const Scene& scene, const RayTracer& tracer, const Basis&
       settings_(settings),
       integrator_(scene, tracer, settings.transport),
       punctual_(scene, tracer, punctualShOrder(basis)),
-      directView_(scene, tracer, settings.transport, integrator_.emitters(), integrator_.lightAim(), settings.rays),
+      directView_(scene, tracer, settings.transport, integrator_.emitters(), integrator_.lightAim()),
       coefficientsPerProbe_(basis.totalCoefficients()),
       visibilityPerProbe_(basis.functions(0).count()) {
   const DirectionSet fibonacci = sphericalFibonacci(settings.rays);
   weights_ = fibonacci.weights;
+  for (int round = 0; round < settings.convergence.maxRounds; ++round)
+    roundLattices_.push_back(sphericalFibonacci(settings.rays << round));
   shOrder_ = std::min(resolvableShOrder(fibonacci.size()), kMaxSampleShOrder);
   directHarmonics_ = SphericalHarmonics(shOrder_);
   // Each rotation's SH fit of the samples serves every function set of the basis. Only the
@@ -118,7 +158,7 @@ ProbeBaker::ProbeBaker(const Scene& scene, const RayTracer& tracer, const Basis&
     for (const SampledFit& fit : shFits) group.fromSamples.push_back(fit.after(fromSh).cast<float>());
     if (punctualAtProbe)
       group.fromPunctualSh = ops.irradianceFromSh(punctual_.shOrder(), settings.projection.window);
-    if (!directView_.empty()) group.fromDirectSh = fromSh;
+    if (!directView_.empty() || settings.convergence.adaptive()) group.fromDirectSh = fromSh;
     if (settings.projection.nonNegative) group.gram = ops.gram();
     groups_.push_back(std::move(group));
   }
@@ -126,22 +166,93 @@ ProbeBaker::ProbeBaker(const Scene& scene, const RayTracer& tracer, const Basis&
 
 ProbeBaker::~ProbeBaker() = default;
 
+ProbeBaker::Rounds ProbeBaker::traceRounds(const ProbeTask& task, const std::vector<PunctualAtProbe::Arrival>& lights,
+                                           std::vector<PunctualAtProbe::Arrival>* direct, Eigen::MatrixXd& latticeSh,
+                                           int taskIndex, int batchSize, RayCounts* counts,
+                                           ProbeSamples* samples) const {
+  const ConvergenceSettings& convergence = settings_.convergence;
+  const ColorSpace space = basis_.colorSpace();
+  RoundStatistics::AxisIrradiance punctualPart = RoundStatistics::AxisIrradiance::Zero();
+  addAxisIrradiance(lights, &punctualPart);
+  RoundStatistics statistics(punctualPart);
+
+  thread_local std::vector<Eigen::Vector3f> directions, radiance;
+  thread_local std::vector<float> sky;
+  thread_local std::vector<double> y;
+  thread_local std::vector<PunctualAtProbe::Arrival> latticeDirect;
+  y.resize(directHarmonics_.count());
+  const int count = directHarmonics_.count();
+  // Sums are of n·(the lattice's estimate), n its size: divided by all the rays at the end, each
+  // ray weighs the same.
+  direct->clear();
+  while (statistics.rounds() < convergence.maxRounds && !statistics.converged(convergence)) {
+    const int round = statistics.rounds();
+    const DirectionSet& unturned = roundLattices_[round];
+    const int rays = int(unturned.size());
+    directions.resize(rays);
+    radiance.resize(rays);
+    sky.resize(rays);
+    const ProbeView view = directView_.at(task.position, rays);
+    RoundStatistics::AxisIrradiance estimates[2];
+    for (int half = 0; half < 2; ++half) {
+      const int lattice = 2 * round + half;
+      const std::uint64_t id = latticeProbeId(task.id, lattice);
+      const Eigen::Matrix3d turn = latticeRotation(settings_.transport.seed, task.id, lattice).cast<double>();
+      for (int r = 0; r < rays; ++r) directions[r] = (turn * unturned.directions[r]).normalized().cast<float>();
+      integrator_.trace(task.position, id, directions.data(), rays, radiance.data(), sky.data(), counts, &view);
+      latticeDirect.clear();
+      if (!directView_.empty()) directView_.sample(view, id, &latticeDirect, counts);
+      estimates[half] = latticeIrradiance(directions.data(), unturned.weights, radiance.data(), latticeDirect);
+      for (PunctualAtProbe::Arrival& a : latticeDirect) a.irradiance *= float(rays);
+      direct->insert(direct->end(), latticeDirect.begin(), latticeDirect.end());
+      // The lattice as SH deltas, like the direct-view samples: n·w·L(ω)·Y(ω) per ray.
+      for (int r = 0; r < rays; ++r) {
+        const double weight = unturned.weights[r] * rays;
+        directHarmonics_.evaluate(directions[r].cast<double>(), y.data());
+        const Eigen::Vector3d value = toColorSpace(space, radiance[r]).cast<double>() * weight;
+        const double seen = double(sky[r]) * weight;
+        for (int i = 0; i < count; ++i) {
+          for (int c = 0; c < 3; ++c) latticeSh(i, c * batchSize + taskIndex) += value[c] * y[i];
+          latticeSh(i, 3 * batchSize + taskIndex) += seen * y[i];
+        }
+      }
+      if (samples) {
+        samples->directions.insert(samples->directions.end(), directions.begin(), directions.end());
+        for (double w : unturned.weights) samples->weights.push_back(w * rays);
+        samples->radiance.insert(samples->radiance.end(), radiance.begin(), radiance.end());
+        samples->visibility.insert(samples->visibility.end(), sky.begin(), sky.end());
+      }
+    }
+    statistics.add(rays, estimates[0], estimates[1]);
+  }
+  const std::int64_t traced = raysAfterRounds(settings_.rays, statistics.rounds());
+  for (int c = 0; c < 4; ++c) latticeSh.col(c * batchSize + taskIndex) /= double(traced);
+  for (PunctualAtProbe::Arrival& a : *direct) a.irradiance /= float(traced);
+  if (samples)
+    for (double& w : samples->weights) w /= double(traced);
+  return {traced, statistics.converged(convergence)};
+}
+
 void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, float* visibility, RayCounts* counts,
-                      std::vector<ProbeSamples>* samples) const {
+                      std::vector<ProbeSamples>* samples, RoundTally* tally) const {
   const int p = int(tasks.size());
   const int rays = settings_.rays;
   const ColorSpace space = basis_.colorSpace();
+  const ConvergenceSettings& convergence = settings_.convergence;
+  const bool adaptive = convergence.adaptive();
   if (samples) samples->assign(p, {});
 
   // Probes in order of rotation, so that each rotation's columns are one block: per rotation,
-  // channel 0 of its probes, then channel 1, channel 2, visibility.
+  // channel 0 of its probes, then channel 1, channel 2, visibility. (A fixed lattice only.)
   std::vector<int> order(p);
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return tasks[a].rotation < tasks[b].rotation; });
 
   // Kept from brick to brick on each thread: a brick's samples are megabytes.
   thread_local ScratchBuffer<float> sampleStore;
-  Eigen::Map<Eigen::MatrixXf> columns(sampleStore.reserve(std::size_t(rays) * 4 * std::size_t(p)), rays, 4 * p);
+  const int columnRays = adaptive ? 0 : rays;
+  Eigen::Map<Eigen::MatrixXf> columns(sampleStore.reserve(std::size_t(columnRays) * 4 * std::size_t(p)), columnRays,
+                                      4 * p);
   const bool punctualAtProbe = settings_.transport.directPunctual && !punctual_.empty();
   // Arrivals, per probe and channel in the colour space: SH coefficients of the punctual lights
   // (to their own order) and of the direct-view samples (to the lattice's).
@@ -154,6 +265,10 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
   ArrivalHarmonics punctualSh(punctual_.harmonics()), directSh(directHarmonics_);
   if (punctualAtProbe) punctualSh.sh.setZero(punctual_.shCount(), 3 * p);
   if (!directView_.empty()) directSh.sh.setZero(directHarmonics_.count(), 3 * p);
+  // Adaptive convergence: the lattices' SH coefficients per probe, of the three channels and of
+  // sky visibility (count × 4p, channel-major like directSh).
+  Eigen::MatrixXd latticeSh;
+  if (adaptive) latticeSh.setZero(directHarmonics_.count(), 4 * p);
   auto addArrivals = [&](ArrivalHarmonics& set, const std::vector<PunctualAtProbe::Arrival>& arrivals, int taskIndex) {
     if (arrivals.empty()) return;
     set.any = true;
@@ -180,6 +295,33 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
     blockOf[s] = int(blocks.size()) - 1;
   }
 
+  // Traces the probe's fixed lattice into its columns, with its direct-view samples.
+  auto traceLattice = [&](int s, const ProbeTask& task, std::vector<PunctualAtProbe::Arrival>* direct,
+                          RayCounts* rangeCounts, ProbeSamples* probeSamples) {
+    thread_local std::vector<Eigen::Vector3f> radiance;
+    thread_local std::vector<float> sky;
+    radiance.resize(rays);
+    sky.resize(rays);
+    const Block& block = blocks[blockOf[s]];
+    const std::vector<Eigen::Vector3f>& dirs = directions_[block.rotation];
+    const int within = s - block.first;
+    const ProbeView view = directView_.at(task.position, rays);
+    integrator_.trace(task.position, task.id, dirs.data(), rays, radiance.data(), sky.data(), rangeCounts, &view);
+    const int base = 4 * block.first;
+    for (int r = 0; r < rays; ++r) {
+      const Eigen::Vector3f value = toColorSpace(space, radiance[r]);
+      for (int c = 0; c < 3; ++c) columns(r, base + c * block.count + within) = value[c];
+      columns(r, base + 3 * block.count + within) = sky[r];
+    }
+    if (!directView_.empty()) directView_.sample(view, task.id, direct, rangeCounts);
+    if (probeSamples) {
+      probeSamples->directions = dirs;
+      probeSamples->weights = weights_;
+      probeSamples->radiance = radiance;
+      probeSamples->visibility = sky;
+    }
+  };
+
   // A probe's samples depend on nothing but the probe, so they are traced a few probes per task:
   // a volume of a few bricks keeps every thread busy to the end, where whole bricks would leave
   // one thread finishing the last brick alone. Isolated, so that a thread waiting here takes
@@ -187,70 +329,81 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
   std::mutex countsMutex;
   tbb::this_task_arena::isolate([&] {
     tbb::parallel_for(tbb::blocked_range<int>(0, p, kProbesPerTask), [&](const tbb::blocked_range<int>& range) {
-      thread_local std::vector<Eigen::Vector3f> radiance;
-      thread_local std::vector<float> sky;
-      radiance.resize(rays);
-      sky.resize(rays);
       RayCounts rangeCounts;
+      RoundTally rangeTally;
       for (int s = range.begin(); s < range.end(); ++s) {
-        const Block& block = blocks[blockOf[s]];
-        const std::vector<Eigen::Vector3f>& dirs = directions_[block.rotation];
-        const int within = s - block.first;
         const int taskIndex = order[s];
         const ProbeTask& task = tasks[taskIndex];
-        const ProbeView view = directView_.at(task.position);
-        integrator_.trace(task.position, task.id, dirs.data(), rays, radiance.data(), sky.data(), &rangeCounts,
-                          &view);
-        const int base = 4 * block.first;
-        for (int r = 0; r < rays; ++r) {
-          const Eigen::Vector3f value = toColorSpace(space, radiance[r]);
-          for (int c = 0; c < 3; ++c) columns(r, base + c * block.count + within) = value[c];
-          columns(r, base + 3 * block.count + within) = sky[r];
-        }
+        ProbeSamples* probeSamples = samples ? &(*samples)[taskIndex] : nullptr;
         std::vector<PunctualAtProbe::Arrival> lights, direct;
         if (punctualAtProbe) lights = punctual_.visibleLights(task.position, &rangeCounts);
-        if (!directView_.empty()) directView_.sample(view, task.id, &direct, &rangeCounts);
+        if (adaptive) {
+          const Rounds rounds =
+              traceRounds(task, lights, &direct, latticeSh, taskIndex, p, &rangeCounts, probeSamples);
+          rangeTally.add(rounds.rays, !rounds.converged);
+        } else {
+          traceLattice(s, task, &direct, &rangeCounts, probeSamples);
+          rangeTally.add(rays, false);
+        }
         addArrivals(punctualSh, lights, taskIndex);
         addArrivals(directSh, direct, taskIndex);
-        if (samples) {
-          ProbeSamples& probeSamples = (*samples)[taskIndex];
-          probeSamples.directions = dirs;
-          probeSamples.weights = weights_;
-          probeSamples.radiance = radiance;
-          probeSamples.visibility = sky;
-          probeSamples.punctual = lights;
-          probeSamples.direct = direct;
+        if (probeSamples) {
+          probeSamples->punctual = std::move(lights);
+          probeSamples->direct = std::move(direct);
         }
       }
       const std::lock_guard<std::mutex> lock(countsMutex);
       *counts += rangeCounts;  // integers: the same totals in any order
+      if (tally) *tally += rangeTally;
     });
   });
 
-  // Each coefficient is a dot product of an operator row with a probe's samples, written straight
-  // to the output: the brick's operator-times-samples product, coefficient by coefficient. Eigen's
-  // general product cost two and a half times as much here, most of it repacking these short,
-  // wide sample blocks on every call.
-  auto project = [&](const auto& fromSamples, int column, int functions, float scale, float* out) {
-    const auto samples = columns.col(column);
-    for (int f = 0; f < functions; ++f) out[f] = fromSamples.row(f).dot(samples) * scale;
-  };
   const auto projectionStart = std::chrono::steady_clock::now();
-  for (const Block& block : blocks) {
-    const int base = 4 * block.first;
+  if (adaptive) {
+    // The lattices' SH means → irradiance coefficients, through the operator the direct-view
+    // samples take.
+    std::fill_n(coefficients, std::size_t(p) * coefficientsPerProbe_, 0.0f);
+    latticeSh.middleCols(3 * p, p) /= M_PI;
     for (const ChannelGroup& group : groups_) {
-      const auto& fromSamples = group.fromSamples[block.rotation];
+      const Eigen::MatrixXd result =
+          group.fromDirectSh * latticeSh.middleCols(group.firstChannel * p, group.channelCount * p);
       for (int c = 0; c < group.channelCount; ++c) {
-        const int channel = group.firstChannel + c;
-        const int offset = basis_.coefficientOffset(channel);
-        for (int within = 0; within < block.count; ++within)
-          project(fromSamples, base + channel * block.count + within, group.functions, 1.0f,
-                  coefficients + std::size_t(order[block.first + within]) * coefficientsPerProbe_ + offset);
+        const int offset = basis_.coefficientOffset(group.firstChannel + c);
+        for (int q = 0; q < p; ++q) {
+          float* out = coefficients + std::size_t(q) * coefficientsPerProbe_ + offset;
+          for (int f = 0; f < group.functions; ++f) out[f] = float(result(f, c * p + q));
+        }
       }
     }
-    for (int within = 0; within < block.count; ++within)
-      project(groups_[0].fromSamples[block.rotation], base + 3 * block.count + within, visibilityPerProbe_,
-              float(1.0 / M_PI), visibility + std::size_t(order[block.first + within]) * visibilityPerProbe_);
+    const Eigen::MatrixXd seen = groups_[0].fromDirectSh * latticeSh.middleCols(3 * p, p);
+    for (int q = 0; q < p; ++q)
+      for (int f = 0; f < visibilityPerProbe_; ++f)
+        visibility[std::size_t(q) * visibilityPerProbe_ + f] = float(seen(f, q));
+  } else {
+    // Each coefficient is a dot product of an operator row with a probe's samples, written
+    // straight to the output: the brick's operator-times-samples product, coefficient by
+    // coefficient. Eigen's general product cost two and a half times as much here, most of it
+    // repacking these short, wide sample blocks on every call.
+    auto project = [&](const auto& fromSamples, int column, int functions, float scale, float* out) {
+      const auto samples = columns.col(column);
+      for (int f = 0; f < functions; ++f) out[f] = fromSamples.row(f).dot(samples) * scale;
+    };
+    for (const Block& block : blocks) {
+      const int base = 4 * block.first;
+      for (const ChannelGroup& group : groups_) {
+        const auto& fromSamples = group.fromSamples[block.rotation];
+        for (int c = 0; c < group.channelCount; ++c) {
+          const int channel = group.firstChannel + c;
+          const int offset = basis_.coefficientOffset(channel);
+          for (int within = 0; within < block.count; ++within)
+            project(fromSamples, base + channel * block.count + within, group.functions, 1.0f,
+                    coefficients + std::size_t(order[block.first + within]) * coefficientsPerProbe_ + offset);
+        }
+      }
+      for (int within = 0; within < block.count; ++within)
+        project(groups_[0].fromSamples[block.rotation], base + 3 * block.count + within, visibilityPerProbe_,
+                float(1.0 / M_PI), visibility + std::size_t(order[block.first + within]) * visibilityPerProbe_);
+    }
   }
 
   for (const auto& [set, fromSh] : {std::pair{&punctualSh, &ChannelGroup::fromPunctualSh},

@@ -7,8 +7,10 @@
 
 #include "bake/Basis.h"
 #include "bake/DirectView.h"
+#include "bake/DirectionSet.h"
 #include "bake/GramOperators.h"
 #include "bake/PathIntegrator.h"
+#include "bake/ProbeConvergence.h"
 #include "bake/PunctualAtProbe.h"
 #include "bake/Transport.h"
 #include "scene/RayTracer.h"
@@ -23,7 +25,8 @@ struct ProjectionOptions {
 };
 
 struct BakeSettings {
-  int rays = 256;
+  int rays = 256;  // a fixed count, or with adaptive convergence the size of round 0's lattices
+  ConvergenceSettings convergence;
   ProjectionOptions projection;
   TransportSettings transport;
 };
@@ -60,7 +63,10 @@ Eigen::Vector3f sampledIrradiance(const ProbeSamples& samples, const Eigen::Vect
 // projection: samples → SH fit of the resolvable order → clamped-cosine convolution → exact
 // projection into the basis. A batch costs one matrix product per rotation and channel group.
 // Punctual lights seen by the probe, and the direct-view samples, enter as SH deltas through a
-// second precomputed product.
+// second precomputed product. With adaptive convergence a probe traces rounds of lattices that
+// double until its irradiance is known well enough (ConvergenceSettings); each lattice turns by
+// a rotation of its own, drawn from (seed, probe, lattice), and enters as SH deltas like the
+// direct-view samples, so that no lattice needs an operator of its own.
 class ProbeBaker {
  public:
   // Which sampler made a volume, recorded in its metadata (setting "sampler") so that `validate`
@@ -68,6 +74,12 @@ class ProbeBaker {
   // direct view sampled by importance and combined by MIS, path vertices aiming at lights.
   // Volumes before it record none (one fixed set of eight rotations, the lattice alone).
   static constexpr const char* kSampler = "seeded-lattice+direct-view-mis+aimed-bounces/1";
+  // With adaptive convergence: rounds of two lattices that double, each in the probe's own
+  // rotation (ConvergenceSettings).
+  static constexpr const char* kAdaptiveSampler = "doubling-lattice-rounds+direct-view-mis+aimed-bounces/1";
+  static const char* samplerName(const BakeSettings& settings) {
+    return settings.convergence.adaptive() ? kAdaptiveSampler : kSampler;
+  }
 
   // The sample fit never goes beyond this SH order: the clamped cosine's band 16 is 0.15 % of
   // band 0, and the fit's cost grows with the square of the SH count.
@@ -89,18 +101,31 @@ class ProbeBaker {
   double projectionSeconds() const { return projectionNanoseconds_.load() * 1e-9; }
 
   // coefficients: tasks.size() × coefficientsPerProbe(); visibility: × visibilityPerProbe().
-  // `samples`, when given, receives each task's samples.
+  // `samples`, when given, receives each task's samples; `tally` hears how many lattice
+  // directions the probes took.
   void bake(const std::vector<ProbeTask>& tasks, float* coefficients, float* visibility, RayCounts* counts,
-            std::vector<ProbeSamples>* samples = nullptr) const;
+            std::vector<ProbeSamples>* samples = nullptr, RoundTally* tally = nullptr) const;
 
  private:
   struct ChannelGroup;
+  struct Rounds {
+    std::int64_t rays;
+    bool converged;
+  };
+  // One probe's rounds, until it converges: its lattices' radiance is summed as SH into
+  // `latticeSh` (column c·batchSize + taskIndex for channel c, 3 for sky visibility), its
+  // direct-view samples into `direct`, both as means over all its rays; and into `samples`
+  // when given.
+  Rounds traceRounds(const ProbeTask& task, const std::vector<PunctualAtProbe::Arrival>& lights,
+                     std::vector<PunctualAtProbe::Arrival>* direct, Eigen::MatrixXd& latticeSh, int taskIndex,
+                     int batchSize, RayCounts* counts, ProbeSamples* samples) const;
   const Basis& basis_;
   BakeSettings settings_;
   PathIntegrator integrator_;
   PunctualAtProbe punctual_;
   DirectView directView_;
   std::vector<std::vector<Eigen::Vector3f>> directions_;  // per rotation
+  std::vector<DirectionSet> roundLattices_;               // unturned, per round (adaptive convergence)
   std::vector<double> weights_;
   SphericalHarmonics directHarmonics_{0};  // the direct-view samples' expansion: the lattice's order
   std::vector<ChannelGroup> groups_;

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -59,10 +60,17 @@ int runBakeCommand(int argc, char** argv) {
                           [&](std::int64_t done, std::int64_t total) { bar.update(done, total); });
     }
     const double bakeSeconds = secondsSince(stage);
-    volume.settings["rays"] = std::to_string(options.rays);
+    const ConvergenceSettings& convergence = prepared.settings.convergence;
+    volume.settings["rays"] = std::to_string(prepared.settings.rays);
+    volume.settings["quality"] = qualityName(options, prepared.settings);
+    if (convergence.adaptive()) {
+      volume.settings["target_error"] = fmt::format("{}", convergence.targetError);
+      volume.settings["min_rays"] = std::to_string(raysAfterRounds(prepared.settings.rays, convergence.minRounds));
+      volume.settings["max_rays"] = std::to_string(raysAfterRounds(prepared.settings.rays, convergence.maxRounds));
+    }
     volume.settings["bounces"] = std::to_string(prepared.settings.transport.bounces);
     volume.settings["seed"] = std::to_string(options.seed);
-    volume.settings["sampler"] = ProbeBaker::kSampler;
+    volume.settings["sampler"] = ProbeBaker::samplerName(prepared.settings);
     for (const PlannedEffect& e : prepared.plan) volume.settings["effect." + e.name] = e.simulated ? "on" : "off";
     volume.settings["window"] = std::to_string(options.projection.window.hannWidth);
     volume.settings["non_negative"] = options.projection.nonNegative ? "true" : "false";
@@ -76,6 +84,9 @@ int runBakeCommand(int argc, char** argv) {
     const double writeSeconds = secondsSince(stage);
     const double totalSeconds = secondsSince(start);
     const double mrays = stats.traceSeconds > 0 ? stats.rays.total() / stats.traceSeconds * 1e-6 : 0.0;
+    const RoundTally& lattice = stats.lattice;
+    const double meanRays = lattice.probes > 0 ? double(lattice.rays) / double(lattice.probes) : 0.0;
+    const std::int64_t limitRays = raysAfterRounds(prepared.settings.rays, convergence.maxRounds);
 
     if (json) {
       nlohmann::json j = {
@@ -89,7 +100,13 @@ int runBakeCommand(int argc, char** argv) {
           {"probe_states", {{"valid", stats.validProbes}, {"relocated", stats.relocatedProbes},
                             {"invalid", stats.invalidProbes}}},
           {"bricks", stats.bricks},
-          {"rays_per_probe", stats.raysPerProbe},
+          {"rays_per_probe", std::llround(meanRays)},
+          {"sampling", {{"quality", volume.settings["quality"]},
+                        {"target_relative_error", convergence.targetError},
+                        {"mean_rays_per_probe", meanRays},
+                        {"most_rays_per_probe", lattice.mostRays},
+                        {"ray_limit", convergence.adaptive() ? limitRays : std::int64_t(stats.raysPerProbe)},
+                        {"probes_at_ray_limit", lattice.atLimit}}},
           {"bounces", prepared.settings.transport.bounces},
           {"seed", options.seed},
           {"plan", planJson(prepared.plan)},
@@ -106,6 +123,13 @@ int runBakeCommand(int argc, char** argv) {
       std::cout << j.dump(2) << "\n";
     } else {
       const RayCounts& r = stats.rays;
+      const std::string raysText =
+          convergence.adaptive()
+              ? fmt::format("{:.0f} rays on average (quality {}: to {} % standard error, {} probes stopped at "
+                            "the limit of {} rays, the most any probe traced: {})",
+                            meanRays, options.quality, 100.0 * convergence.targetError, lattice.atLimit,
+                            limitRays, lattice.mostRays)
+              : std::to_string(stats.raysPerProbe);
       std::cerr << fmt::format(
           "baked {} probes ({} × {} × {}, spacing {:.4g} m; {} relocated, {} invalid and filled) × {} rays, {} "
           "bounce(s), in {:.2f} s ({:.1f} Mrays/s; operators {:.2f} s; load {:.2f} s, BVH {:.2f} s, write {:.2f} "
@@ -113,7 +137,7 @@ int runBakeCommand(int argc, char** argv) {
           "rays: {} probe, {} bounce, {} punctual shadow, {} emitter shadow, {} environment shadow, {} direct "
           "punctual shadow, {} direct view, {} direct-view shadow, {} aimed bounce, {} aimed-bounce shadow, {} validity; {} in all\n",
           stats.probes, grid.dims.x(), grid.dims.y(), grid.dims.z(), grid.spacing, stats.relocatedProbes,
-          stats.invalidProbes, options.rays, prepared.settings.transport.bounces, stats.traceSeconds, mrays,
+          stats.invalidProbes, raysText, prepared.settings.transport.bounces, stats.traceSeconds, mrays,
           stats.operatorSeconds, prepared.loadSeconds, prepared.bvhSeconds, writeSeconds,
           peakMemoryBytes() / 1048576.0, r.probe, r.bounce, r.punctualShadow, r.emitterShadow, r.environmentShadow,
           r.directPunctualShadow, r.directView, r.directViewShadow, r.aimedBounce, r.aimedBounceShadow, r.validity, r.total());

@@ -7,6 +7,7 @@
 
 #include "bake/BasisRegistry.h"
 #include "bake/NonNegativeProjection.h"
+#include "bake/ProbeConvergence.h"
 #include "bake/TransportPlan.h"
 #include "common/Error.h"
 #include "common/Timing.h"
@@ -28,7 +29,14 @@ void addBakeOptions(CLI::App& app, BakeOptions& o, bool listed) {
   app.add_option("--spacing", o.spacing, "probe spacing in metres; default: the longest side of the scene / 16");
   if (!listed) {
     app.add_option("--basis", o.basisName, "basis to store (see `baker bases`)")->capture_default_str();
-    app.add_option("--rays", o.rays, "directions traced per probe, one path each")->capture_default_str();
+    o.quality = "default";
+    auto* quality = app.add_option("--quality", o.quality,
+                                   qualityPresetNames() +
+                                       ": each probe traces lattices that double in size until the standard error "
+                                       "of its irradiance is small enough (docs/SAMPLING.md)")
+                        ->capture_default_str();
+    app.add_option("--rays", o.rays, "a fixed number of directions per probe, one path each, in place of --quality")
+        ->excludes(quality);
     app.add_option("--bounces", o.bounces,
                    "diffuse reflections per path: 0 = emission and sky seen directly, 1 = adds the direct lighting "
                    "of the first surface hit")
@@ -84,6 +92,12 @@ PreparedBake prepareBake(const CLI::App& app, const BakeOptions& o, std::ostream
   b.plan = planEffects(*b.scene, takeCensus(*b.scene));
   turnOffEffects(b.plan, o.turnedOff);
   b.settings.rays = o.rays;
+  if (!o.quality.empty() && !app.count("--rays")) {
+    const QualityPreset* preset = findQualityPreset(o.quality);
+    if (!preset) throw InputError(fmt::format("--quality must be one of {}, got '{}'", qualityPresetNames(), o.quality));
+    b.settings.rays = preset->rays;
+    b.settings.convergence = preset->convergence;
+  }
   b.settings.projection = o.projection;
   b.settings.transport = transportSettings(b.plan, o.bounces, o.seed);
   printPlan(log, b.plan);
@@ -92,6 +106,10 @@ PreparedBake prepareBake(const CLI::App& app, const BakeOptions& o, std::ostream
   b.tracer = std::make_unique<RayTracer>(*b.scene, b.settings.transport.alphaFilters);
   b.bvhSeconds = secondsSince(bvhStart);
   return b;
+}
+
+std::string qualityName(const BakeOptions& options, const BakeSettings& settings) {
+  return settings.convergence.adaptive() ? options.quality : "fixed";
 }
 
 void printPlan(std::ostream& out, const std::vector<PlannedEffect>& plan) {

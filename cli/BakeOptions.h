@@ -25,6 +25,7 @@ struct BakeOptions {
   std::string basisName = "sh-l2";
   double spacing = 0.0;
   int rays = 256;
+  std::string quality;  // a preset of qualityPresets(); empty: `rays` rays, fixed
   int bounces = 3;
   std::uint64_t seed = 0;
   int threads = 0;
@@ -54,6 +55,9 @@ struct PreparedBake {
 // Checks the options (InputError naming the flag), loads the scene, prints its warnings and
 // the plan to `log`, and builds the BVH.
 PreparedBake prepareBake(const CLI::App& app, const BakeOptions& options, std::ostream& log);
+
+// The volume's `quality` setting: the preset, or "fixed" for a --rays bake.
+std::string qualityName(const BakeOptions& options, const BakeSettings& settings);
 
 void printPlan(std::ostream& out, const std::vector<PlannedEffect>& plan);
 nlohmann::json planJson(const std::vector<PlannedEffect>& plan);

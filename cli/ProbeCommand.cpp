@@ -84,6 +84,7 @@ int runProbeCommand(int argc, char** argv) {
                         {"state", probeStateName(placements[i].state)},
                         {"valid", placements[i].state != ProbeState::Invalid},
                         {"backface_ratio", placements[i].backfaceRatio},
+                        {"rays", std::int64_t(samples[i].radiance.size())},
                         {"coefficients", std::vector<float>(c, c + probeBaker.coefficientsPerProbe())},
                         {"visibility_coefficients", std::vector<float>(v, v + probeBaker.visibilityPerProbe())},
                         {"irradiance", fromBasis},
@@ -95,7 +96,9 @@ int runProbeCommand(int argc, char** argv) {
     if (json) {
       const nlohmann::json j = {{"scene", options.scenePath},
                                 {"basis", basis.name()},
-                                {"rays", options.rays},
+                                {"rays", prepared.settings.rays},
+                                {"quality", qualityName(options, prepared.settings)},
+                                {"target_relative_error", prepared.settings.convergence.targetError},
                                 {"bounces", prepared.settings.transport.bounces},
                                 {"seed", options.seed},
                                 {"plan", planJson(prepared.plan)},
@@ -105,11 +108,11 @@ int runProbeCommand(int argc, char** argv) {
       return 0;
     }
     for (const nlohmann::json& p : probes) {
-      std::cout << fmt::format("probe at ({}): {} (back-face ratio {:.3f}), baked at ({}), sky visibility {:.4f}\n",
-                               fmt::join(p["position"].get<std::vector<float>>(), ", "),
-                               p["state"].get<std::string>(), p["backface_ratio"].get<float>(),
-                               fmt::join(p["baked_position"].get<std::vector<float>>(), ", "),
-                               p["sky_visibility"].get<double>());
+      std::cout << fmt::format(
+          "probe at ({}): {} (back-face ratio {:.3f}), baked at ({}) with {} rays, sky visibility {:.4f}\n",
+          fmt::join(p["position"].get<std::vector<float>>(), ", "), p["state"].get<std::string>(),
+          p["backface_ratio"].get<float>(), fmt::join(p["baked_position"].get<std::vector<float>>(), ", "),
+          p["rays"].get<std::int64_t>(), p["sky_visibility"].get<double>());
       std::cout << "  normal  E from the basis (r, g, b)            E from the samples (r, g, b)          sky\n";
       for (const char* name : kAxisNames) {
         const auto b = p["irradiance"][name].get<std::vector<float>>();

@@ -17,6 +17,7 @@
 #include "bake/Baker.h"
 #include "formats/AtomicFile.h"
 #include "formats/VdbChecksum.h"
+#include "formats/VdbUuid.h"
 #include "formats/VolumeLayout.h"
 #include "formats/VolumeMetadata.h"
 
@@ -131,6 +132,7 @@ void writeVdb(const Volume& volume, const Basis& basis, const std::string& path)
     GridByGridArchive().writeGrids(file, path, fileMetadata(volume, basis), std::int32_t(specs.size()), gridAt);
     file.close();
     if (!file) throw std::runtime_error(fmt::format("{}: cannot write OpenVDB file: {}", path, failureReason()));
+    deriveVdbUuid(out.temporaryPath());
     sealVdbChecksum(out.temporaryPath());
   } catch (const openvdb::Exception& e) {
     throw std::runtime_error(fmt::format("{}: cannot write OpenVDB file: {}", path, e.what()));

@@ -54,8 +54,8 @@ def env_args(ref):
         return ["--sky", ",".join(repr(float(x)) for x in bg)] if any(bg) else []
     name = (env or {}).get("file") or ref["env"]
     path = os.path.join(SHARED, "data", "hdri", name)
-    if not os.path.isfile(path):
-        path = os.path.join(ROOT, "data", name)
+    if not os.path.isfile(path):  # one of the project's own maps: data/<its name>/
+        path = os.path.join(ROOT, "data", os.path.splitext(name)[0], name)
     return ["--env", path, "--env-intensity", repr(float((env or {}).get("strength", 1.0))),
             "--env-rotation", repr(float((env or {}).get("rotation_deg", 0.0)))]
 

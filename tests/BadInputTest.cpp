@@ -91,6 +91,14 @@ TEST_F(BadInput, SgSharpnessForAnotherBasis) {
   expectRejected("'" + scene_ + "' --basis ad-srbf --sg-sharpness 2 --out out.vdb", "--sg-sharpness");
 }
 
+TEST_F(BadInput, UnknownQuality) {
+  expectRejected("'" + scene_ + "' --quality best --out out.vdb", "--quality must be one of draft, default, final");
+}
+
+TEST_F(BadInput, QualityAndAFixedRayCount) {
+  expectRejected("'" + scene_ + "' --quality draft --rays 64 --out out.vdb", "--rays");
+}
+
 TEST_F(BadInput, NegativeWindow) { expectRejected("'" + scene_ + "' --window -1 --out out.vdb", "--window"); }
 
 TEST_F(BadInput, OutputInAMissingDirectory) {

@@ -36,7 +36,7 @@ namespace {
 const char* const kAxes[6] = {"+x", "-x", "+y", "-y", "+z", "-z"};
 const Eigen::Vector3f kNormals[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
 
-// The shared references, and the project's own (whose environment maps are shared).
+// The shared references, and the project's own.
 std::string referencePath(const std::string& scene) {
   const std::string own = test::sourcePath("tests/reference/" + scene + ".json");
   if (std::filesystem::exists(own)) return own;
@@ -48,15 +48,30 @@ nlohmann::json readJson(const std::string& path) {
   return nlohmann::json::parse(in);
 }
 
-Scene referenceScene(const nlohmann::json& ref) {
+// A reference's scene file and environment map: the project's own (data/), else shared; "" when
+// neither exists.
+std::string existing(const std::string& own, const std::string& shared) {
+  if (std::filesystem::exists(own)) return own;
+  return !shared.empty() && std::filesystem::exists(shared) ? shared : "";
+}
+std::string scenePath(const nlohmann::json& ref) {
   const std::string name = ref["scene"], file = ref["gltf"];
-  std::string path = test::sourcePath("data/" + name + "/" + file);
-  if (!std::filesystem::exists(path)) path = test::sharedDataPath("scenes/" + name + "/" + file);
-  Scene scene = loadGltf(path);
+  return existing(test::sourcePath("data/" + name + "/" + file),
+                  test::sharedDataPath("scenes/" + name + "/" + file));
+}
+std::string environmentPath(const nlohmann::json& ref) {
+  if (!ref.contains("env_settings") || !ref["env_settings"].is_object()) return "";
+  const std::string file = ref["env_settings"]["file"];
+  return existing(test::sourcePath("data/" + std::filesystem::path(file).stem().string() + "/" + file),
+                  test::sharedDataPath("hdri/" + file));
+}
+
+Scene referenceScene(const nlohmann::json& ref) {
+  Scene scene = loadGltf(scenePath(ref));
   if (ref.contains("env_settings") && ref["env_settings"].is_object()) {
     const nlohmann::json& env = ref["env_settings"];
     SceneOptions options;
-    options.environmentMap = test::sharedDataPath("hdri/" + env["file"].get<std::string>());
+    options.environmentMap = environmentPath(ref);
     options.environmentIntensity = env.value("strength", 1.0);
     options.environmentRotation = env.value("rotation_deg", 0.0);
     std::vector<std::string> warnings;
@@ -66,13 +81,19 @@ Scene referenceScene(const nlohmann::json& ref) {
 }
 
 // E(n) at every probe for the six axes, as `baker probe --no direct-punctual` bakes it.
+// `quality`: a preset of qualityPresets() in place of a fixed `rays`.
 std::vector<std::vector<Eigen::Vector3f>> bakeAxes(const Scene& scene, const RayTracer& tracer,
                                                     const std::vector<Eigen::Vector3f>& probes, int rays, int bounces,
-                                                    std::uint64_t seed) {
+                                                    std::uint64_t seed, const char* quality = nullptr) {
   std::vector<PlannedEffect> plan = planEffects(scene, takeCensus(scene));
   turnOffEffects(plan, {"direct-punctual"});
   BakeSettings settings;
   settings.rays = rays;
+  if (quality) {
+    const QualityPreset* preset = findQualityPreset(quality);
+    settings.rays = preset->rays;
+    settings.convergence = preset->convergence;
+  }
   settings.transport = transportSettings(plan, bounces, seed);
   const ShBasis basis(2);
   const ProbeBaker baker(scene, tracer, basis, settings, 1);
@@ -110,29 +131,36 @@ class ReferenceIrradiance : public ::testing::TestWithParam<Case> {};
 // Every probe, axis and channel: the mean of four independent seeds lies within 2 % of
 // S = |E| + ½·(the probe's mean E over the axes) of Cycles' E, plus three standard errors, and
 // that standard error is under 1 % of S.
-TEST_P(ReferenceIrradiance, FourSeedsMatchCyclesOnEveryProbeAxisAndChannel) {
-#ifdef BAKER_SANITIZED
-  GTEST_SKIP() << "millions of paths per case: run in the optimised build only (the same code is checked "
-                  "under the sanitizers by the transport tests)";
-#endif
-  const Case c = GetParam();
-  const std::string path = referencePath(c.scene);
-  if (test::sharedDataPath("").empty() || !std::filesystem::exists(path))
-    GTEST_SKIP() << "../shared/data is not next to this checkout: skipping the Cycles reference " << c.scene;
-  const nlohmann::json ref = readJson(path);
-  const nlohmann::json& setting = ref["settings"][c.setting];
-  const Scene scene = referenceScene(ref);
-  const RayTracer tracer(scene);
+// A reference scene, its setting and its probes, or a reason to skip.
+struct Reference {
+  nlohmann::json ref;
+  Scene scene;
   std::vector<Eigen::Vector3f> probes;
-  for (const auto& p : ref["probes"]) probes.emplace_back(p[0].get<float>(), p[1].get<float>(), p[2].get<float>());
-  const int rays = testRays(c.scene);
-  std::vector<std::vector<std::vector<Eigen::Vector3f>>> seeds;
-  for (std::uint64_t seed = 1; seed <= 4; ++seed)
-    seeds.push_back(bakeAxes(scene, tracer, probes, rays, setting["baker_bounces"].get<int>(), seed));
+  const nlohmann::json& setting(int index) const { return ref["settings"][index]; }
+};
 
+// The project's own references (scene, map and Cycles values in this repository) run without
+// ../shared; the others skip without it.
+std::string readReference(const Case& c, Reference* out) {
+  const std::string path = referencePath(c.scene);
+  const std::string skip = "../shared/data is not next to this checkout: skipping the Cycles reference " + c.scene;
+  if (!std::filesystem::exists(path)) return skip;
+  out->ref = readJson(path);
+  if (scenePath(out->ref).empty()) return skip;
+  if (out->ref.contains("env_settings") && out->ref["env_settings"].is_object() && environmentPath(out->ref).empty())
+    return skip;
+  out->scene = referenceScene(out->ref);
+  for (const auto& p : out->ref["probes"])
+    out->probes.emplace_back(p[0].get<float>(), p[1].get<float>(), p[2].get<float>());
+  return "";
+}
+
+// Calls check(probe, axis, channel, Cycles' E, S) for every entry of the setting whose scale
+// S = |E| + ½·(the probe's mean E over the axes, that channel) is positive; returns how many.
+template <typename Check>
+int forEachEntry(const nlohmann::json& setting, std::size_t probes, Check check) {
   int entries = 0;
-  std::ostringstream misses;
-  for (std::size_t p = 0; p < probes.size(); ++p)
+  for (std::size_t p = 0; p < probes; ++p)
     for (int channel = 0; channel < 3; ++channel) {
       double probeMean = 0.0;
       for (const char* axis : kAxes) probeMean += setting["irradiance_axes"][p][axis][channel].get<double>() / 6.0;
@@ -140,19 +168,71 @@ TEST_P(ReferenceIrradiance, FourSeedsMatchCyclesOnEveryProbeAxisAndChannel) {
         const double expected = setting["irradiance_axes"][p][kAxes[a]][channel].get<double>();
         const double scale = std::abs(expected) + 0.5 * probeMean;
         if (!(scale > 0.0)) continue;
-        std::vector<double> values;
-        for (const auto& run : seeds) values.push_back(run[p][a][channel]);
-        const test::SeedStatistics s = overSeeds(values);
         ++entries;
-        if (std::abs(s.mean - expected) > 0.02 * scale + 3.0 * s.standardError || s.standardError >= 0.01 * scale)
-          misses << "  probe " << p << " E(" << kAxes[a] << ") " << "rgb"[channel] << ": Cycles " << expected
-                 << ", mean of 4 seeds " << s.mean << " (" << 100.0 * (s.mean - expected) / scale
-                 << " % of S), standard error " << 100.0 * s.standardError / scale << " % of S\n";
+        check(p, a, channel, expected, scale);
       }
     }
+  return entries;
+}
+
+TEST_P(ReferenceIrradiance, FourSeedsMatchCyclesOnEveryProbeAxisAndChannel) {
+#ifdef BAKER_SANITIZED
+  GTEST_SKIP() << "millions of paths per case: run in the optimised build only (the same code is checked "
+                  "under the sanitizers by the transport tests)";
+#endif
+  const Case c = GetParam();
+  Reference reference;
+  if (const std::string skip = readReference(c, &reference); !skip.empty()) GTEST_SKIP() << skip;
+  const nlohmann::json& setting = reference.setting(c.setting);
+  const Scene& scene = reference.scene;
+  const RayTracer tracer(scene);
+  const std::vector<Eigen::Vector3f>& probes = reference.probes;
+  const int rays = testRays(c.scene);
+  std::vector<std::vector<std::vector<Eigen::Vector3f>>> seeds;
+  for (std::uint64_t seed = 1; seed <= 4; ++seed)
+    seeds.push_back(bakeAxes(scene, tracer, probes, rays, setting["baker_bounces"].get<int>(), seed));
+
+  std::ostringstream misses;
+  const int entries = forEachEntry(setting, probes.size(), [&](std::size_t p, int a, int channel, double expected,
+                                                             double scale) {
+    std::vector<double> values;
+    for (const auto& run : seeds) values.push_back(run[p][a][channel]);
+    const test::SeedStatistics s = overSeeds(values);
+    if (std::abs(s.mean - expected) > 0.02 * scale + 3.0 * s.standardError || s.standardError >= 0.01 * scale)
+      misses << "  probe " << p << " E(" << kAxes[a] << ") " << "rgb"[channel] << ": Cycles " << expected
+             << ", mean of 4 seeds " << s.mean << " (" << 100.0 * (s.mean - expected) / scale
+             << " % of S), standard error " << 100.0 * s.standardError / scale << " % of S\n";
+  });
   EXPECT_GT(entries, 0);
   EXPECT_TRUE(misses.str().empty()) << c.scene << ", " << setting["baker_bounces"] << " reflection(s), " << rays
                                     << " rays, seeds 1-4:\n"
+                                    << misses.str();
+}
+
+// What a user gets from `baker SCENE` with no sampling flags (quality "default", seed 0): one
+// bake within 5 % of S of Cycles on every probe, axis and channel.
+TEST_P(ReferenceIrradiance, DefaultQualityBakeIsWithinFivePercentOnEveryProbeAxisAndChannel) {
+#ifdef BAKER_SANITIZED
+  GTEST_SKIP() << "up to a quarter of a million paths per probe: run in the optimised build only";
+#endif
+  const Case c = GetParam();
+  Reference reference;
+  if (const std::string skip = readReference(c, &reference); !skip.empty()) GTEST_SKIP() << skip;
+  const nlohmann::json& setting = reference.setting(c.setting);
+  const RayTracer tracer(reference.scene);
+  const auto baked = bakeAxes(reference.scene, tracer, reference.probes, 0, setting["baker_bounces"].get<int>(), 0,
+                              "default");
+  std::ostringstream misses;
+  const int entries = forEachEntry(setting, reference.probes.size(), [&](std::size_t p, int a, int channel,
+                                                                       double expected, double scale) {
+    const double miss = (baked[p][a][channel] - expected) / scale;
+    if (std::abs(miss) > 0.05)
+      misses << "  probe " << p << " E(" << kAxes[a] << ") " << "rgb"[channel] << ": Cycles " << expected
+             << ", default bake " << baked[p][a][channel] << " (" << 100.0 * miss << " % of S)\n";
+  });
+  EXPECT_GT(entries, 0);
+  EXPECT_TRUE(misses.str().empty()) << c.scene << ", " << setting["baker_bounces"]
+                                    << " reflection(s), quality default, seed 0:\n"
                                     << misses.str();
 }
 
@@ -160,8 +240,9 @@ INSTANTIATE_TEST_SUITE_P(Cycles, ReferenceIrradiance,
                          ::testing::Values(Case{"cornell_box", 0}, Case{"cornell_box", 1}, Case{"cornell_lights", 0},
                                            Case{"cornell_lights", 1}, Case{"two_rooms", 0}, Case{"two_rooms", 1},
                                            Case{"LightsPunctualLamp", 0}, Case{"LightsPunctualLamp", 1},
-                                           Case{"sunlit_yard", 0}, Case{"sunlit_yard", 1}, Case{"window_room", 0},
-                                           Case{"window_room", 1}),
+                                           Case{"sunlit_yard", 0}, Case{"sunlit_yard", 1},
+                                           Case{"sunlit_yard_low_sun", 0}, Case{"sunlit_yard_low_sun", 1},
+                                           Case{"window_room", 0}, Case{"window_room", 1}),
                          [](const ::testing::TestParamInfo<Case>& info) {
                            std::ostringstream name;
                            name << info.param;

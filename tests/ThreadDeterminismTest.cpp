@@ -13,8 +13,12 @@ namespace {
 // are too: every number of threads must give the same bits and the same ray counts. default_room
 // with a point light and a sky map added has every effect a bake simulates: bounces, an
 // emissive panel, a punctual light seen by the probes and by every bounce, a sky with a bright
-// spot through the open side, probes in walls, and every kind of direct-view sample and aim.
-TEST(ThreadDeterminism, EveryThreadCountBakesTheSameVolume) {
+// spot through the open side, probes in walls, and every kind of direct-view sample and aim;
+// with a fixed lattice and with adaptive rounds, where probes stop at different rounds.
+class ThreadDeterminism : public ::testing::TestWithParam<bool> {};
+
+TEST_P(ThreadDeterminism, EveryThreadCountBakesTheSameVolume) {
+  const bool adaptive = GetParam();
   Scene scene = loadGltf(test::sourcePath("data/default_room/default_room.gltf"));
   PunctualLight lamp;
   lamp.position = scene.bounds.center();
@@ -28,6 +32,10 @@ TEST(ThreadDeterminism, EveryThreadCountBakesTheSameVolume) {
   const ProbeGrid grid = makeProbeGrid(scene.bounds, 0.4, 100000);
   BakeSettings settings;
   settings.rays = 64;
+  if (adaptive) {  // rounds of 2 × 16, 32, 64 directions: at most 224 per probe
+    settings.rays = 16;
+    settings.convergence = {0.05, 1, 3};
+  }
   const auto bakeWith = [&](int threads, BakeStats* stats) {
     return test::onThreads(threads, [&] { return bakeVolume(scene, tracer, *basis, grid, settings, stats); });
   };
@@ -41,6 +49,10 @@ TEST(ThreadDeterminism, EveryThreadCountBakesTheSameVolume) {
   ASSERT_GT(oneStats.rays.directView, 0) << "no direct-view samples";
   ASSERT_GT(oneStats.rays.directViewShadow, 0) << "no aim near the light found a lit surface";
   ASSERT_GT(oneStats.rays.aimedBounce, 0) << "no path vertex aimed at the light";
+  if (adaptive) {
+    ASSERT_GT(oneStats.lattice.atLimit, 0) << "no probe took every round";
+    ASSERT_LT(oneStats.lattice.atLimit, oneStats.lattice.probes) << "no probe stopped early";
+  }
   for (int threads : {2, 3}) {
     BakeStats stats;
     const Volume other = bakeWith(threads, &stats);
@@ -56,8 +68,12 @@ TEST(ThreadDeterminism, EveryThreadCountBakesTheSameVolume) {
     EXPECT_EQ(stats.rays.directPunctualShadow, oneStats.rays.directPunctualShadow) << threads << " threads";
     EXPECT_EQ(stats.rays.directView, oneStats.rays.directView) << threads << " threads";
     EXPECT_EQ(stats.rays.aimedBounceShadow, oneStats.rays.aimedBounceShadow) << threads << " threads";
+    EXPECT_EQ(stats.lattice.rays, oneStats.lattice.rays) << threads << " threads";
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(Lattices, ThreadDeterminism, ::testing::Values(false, true),
+                         [](const ::testing::TestParamInfo<bool>& info) { return info.param ? "adaptive" : "fixed"; });
 
 }  // namespace
 }  // namespace baker

@@ -336,13 +336,55 @@ TEST(VolumeFormats, VdbWrittenGridByGridIsWhatOpenVdbWrites) {
                       << std::distance(a.begin(), std::mismatch(a.begin(), a.begin() + common, b.begin()).first);
 }
 
-// A bake written as EXR slices, then `inspect` and `sample` on it, as a user would.
-TEST(VolumeFormats, InspectAndSampleReadEitherFormat) {
-  const std::string dir = test::makeTempDir("formats_cli");
+// OpenVDB writes a random UUID into each header; ours is derived from the content, so the same
+// volume written twice is the same file, and another volume gets another UUID.
+TEST(VolumeFormats, TheSameVolumeIsTheSameVdbFile) {
+  const std::string dir = test::makeTempDir("formats_same_file");
+  const auto basis = makeBasis("sh-l2");
+  const Volume volume = randomVolume(*basis, 13, {9, 9, 9});
+  writeVdb(volume, *basis, dir + "/a.vdb");
+  writeVdb(volume, *basis, dir + "/b.vdb");
+  EXPECT_TRUE(fileBytes(dir + "/a.vdb") == fileBytes(dir + "/b.vdb"));
+  writeVdb(randomVolume(*basis, 14, {9, 9, 9}), *basis, dir + "/c.vdb");
+  openvdb::initialize();
+  std::string tags[2];
+  for (int i = 0; i < 2; ++i) {
+    openvdb::io::File file(dir + (i == 0 ? "/a.vdb" : "/c.vdb"));
+    file.open(false);
+    tags[i] = file.getUniqueTag();
+    file.close();
+  }
+  EXPECT_EQ(tags[0].size(), 36u);
+  EXPECT_EQ(tags[0][14], '8') << tags[0] << ": an RFC 9562 version-8 UUID";
+  EXPECT_NE(tags[0], tags[1]);
+  EXPECT_NO_THROW(readVolume(dir + "/a.vdb")) << "the checksum covers the derived UUID";
+}
+
+// dir/panel.gltf: an emissive 2 m square.
+void writePanel(const std::string& dir) {
   test::GltfBuilder gltf;
   const int emitter = gltf.material({{"emissiveFactor", {1.0, 0.5, 0.25}}, {"doubleSided", true}});
   gltf.node({{"mesh", test::squareMesh(gltf, 2.0f, emitter)}});
   gltf.write(dir, "panel");
+}
+
+// The whole file, through the command: one thread or two, the same bytes (default quality, so
+// that probes stop at different rounds).
+TEST(VolumeFormats, BakesOnAnyThreadCountWriteTheSameFile) {
+  const std::string dir = test::makeTempDir("formats_same_bake");
+  writePanel(dir);
+  for (const char* threads : {"1", "2"}) {
+    const test::ProcessResult bake = test::runBaker(
+        dir, std::string("panel.gltf --spacing 0.7 --quality draft --threads ") + threads + " --out t" + threads + ".vdb");
+    ASSERT_EQ(bake.exitCode, 0) << bake.err;
+  }
+  EXPECT_TRUE(fileBytes(dir + "/t1.vdb") == fileBytes(dir + "/t2.vdb"));
+}
+
+// A bake written as EXR slices, then `inspect` and `sample` on it, as a user would.
+TEST(VolumeFormats, InspectAndSampleReadEitherFormat) {
+  const std::string dir = test::makeTempDir("formats_cli");
+  writePanel(dir);
   for (const std::string& out : {std::string("panel_exr"), std::string("panel.vdb")}) {
     const test::ProcessResult bake = test::runBaker(dir, "panel.gltf --spacing 0.5 --rays 64 --basis ad-srbf --out " + out);
     ASSERT_EQ(bake.exitCode, 0) << bake.err;
