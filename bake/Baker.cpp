@@ -9,9 +9,9 @@
 #include <chrono>
 #include <vector>
 
-#include "bake/MemoryEstimate.h"
 #include "bake/ProbeValidity.h"
 #include "common/Error.h"
+#include "volume/MemoryEstimate.h"
 
 namespace baker {
 namespace {
@@ -21,19 +21,65 @@ namespace {
 constexpr int kRotations = 8;
 int rotationOf(int i, int j, int k) { return (i & 1) + 2 * (j & 1) + 4 * (k & 1); }
 
-}  // namespace
+// The probes of brick `brick`: placed (moved out of geometry, or marked invalid) and traced,
+// their coefficients and sky visibility written into `volume`.
+void bakeBrick(const RayTracer& tracer, const ProbeGrid& grid, const BakeSettings& settings,
+               const ProbeBaker& probeBaker, const Eigen::Vector3i& brick, Volume& volume, RayCounts& counts,
+               RoundTally& tally, std::vector<float>& coefficients, std::vector<float>& visibility) {
+  const Eigen::Vector3i lo = brick * kBrickSize;
+  const Eigen::Vector3i hi = (lo.array() + kBrickSize).min(grid.dims.array());
+  std::vector<ProbeTask> candidates;
+  for (int k = lo.z(); k < hi.z(); ++k)
+    for (int j = lo.y(); j < hi.y(); ++j)
+      for (int i = lo.x(); i < hi.x(); ++i)
+        candidates.push_back({grid.position(i, j, k).cast<float>(), std::uint64_t(grid.linearIndex(i, j, k)),
+                              rotationOf(i, j, k)});
+  if (settings.transport.probeValidity) {
+    const ValidityOptions validityOptions;
+    const std::vector<Eigen::Vector3f> testDirections = validityDirections(validityOptions);
+    // Placed side by side like the probes' tracing (ProbeBaker::bake). Isolated so that a
+    // waiting thread does not start a brick of its own inside this one.
+    std::vector<std::int64_t> validityRays(candidates.size(), 0);
+    tbb::this_task_arena::isolate([&] {
+      tbb::parallel_for(std::size_t(0), candidates.size(), [&](std::size_t c) {
+        const std::int64_t index = std::int64_t(candidates[c].id);
+        const ProbePlacement placement = placeProbe(tracer, candidates[c].position, float(grid.spacing),
+                                                    testDirections, validityOptions, &validityRays[c]);
+        volume.states[index] = placement.state;
+        volume.offsets[index] = placement.offset;
+        candidates[c].position += placement.offset;
+      });
+    });
+    for (std::int64_t n : validityRays) counts.validity += n;
+  }
+  std::vector<ProbeTask> tasks;
+  for (const ProbeTask& candidate : candidates)
+    if (volume.states[candidate.id] != ProbeState::Invalid) tasks.push_back(candidate);
+  coefficients.resize(tasks.size() * volume.coefficientsPerProbe);
+  visibility.resize(tasks.size() * volume.visibilityPerProbe);
+  probeBaker.bake(tasks, coefficients.data(), visibility.data(), &counts, nullptr, &tally);
+  for (std::size_t t = 0; t < tasks.size(); ++t) {
+    std::copy_n(coefficients.data() + t * volume.coefficientsPerProbe, volume.coefficientsPerProbe,
+                volume.coefficients.data() + tasks[t].id * volume.coefficientsPerProbe);
+    std::copy_n(visibility.data() + t * volume.visibilityPerProbe, volume.visibilityPerProbe,
+                volume.visibility.data() + tasks[t].id * volume.visibilityPerProbe);
+  }
+}
 
-Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basis, const ProbeGrid& grid,
-                  const BakeSettings& settings, BakeStats* stats,
-                  const std::function<void(std::int64_t, std::int64_t)>& progress) {
-  if (settings.rays <= 0) throw InputError(fmt::format("--rays must be positive, got {}", settings.rays));
-  requireVolumeFitsInMemory(grid, basis, physicalMemoryBytes());
-  const auto start = std::chrono::steady_clock::now();
-  const ProbeBaker probeBaker(scene, tracer, basis, settings, kRotations);
-  const auto operatorsBuilt = std::chrono::steady_clock::now();
-  const ValidityOptions validityOptions;
-  const std::vector<Eigen::Vector3f> testDirections = validityDirections(validityOptions);
+// No NaN or Inf reaches a file.
+void requireFinite(const Volume& volume) {
+  for (std::size_t i = 0; i < volume.coefficients.size(); ++i)
+    if (!std::isfinite(volume.coefficients[i]))
+      throw NumericalError(fmt::format("probe {} of the bake has a non-finite coefficient (the scene's radiance "
+                                       "overflows float); nothing was written",
+                                       i / volume.coefficientsPerProbe));
+  for (std::size_t i = 0; i < volume.visibility.size(); ++i)
+    if (!std::isfinite(volume.visibility[i]))
+      throw NumericalError(fmt::format("probe {} of the bake has a non-finite sky visibility; nothing was written",
+                                       i / volume.visibilityPerProbe));
+}
 
+Volume emptyVolume(const ProbeGrid& grid, const Basis& basis, const ProbeBaker& probeBaker) {
   Volume volume;
   volume.grid = grid;
   volume.basisName = basis.name();
@@ -44,69 +90,38 @@ Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basi
   volume.visibility.assign(probes * volume.visibilityPerProbe, 0.0f);
   volume.states.assign(probes, ProbeState::Valid);
   volume.offsets.assign(probes, Eigen::Vector3f::Zero());
+  return volume;
+}
 
-  const Eigen::Vector3i bricks = (grid.dims.array() + kBrickSize - 1) / kBrickSize;
+}  // namespace
+
+Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basis, const ProbeGrid& grid,
+                  const BakeSettings& settings, BakeStats* stats,
+                  const std::function<void(std::int64_t, std::int64_t)>& progress) {
+  if (settings.rays <= 0) throw SettingError("rays", fmt::format("must be positive, got {}", settings.rays));
+  requireVolumeFitsInMemory(grid, basis, physicalMemoryBytes());
+  const auto start = std::chrono::steady_clock::now();
+  const ProbeBaker probeBaker(scene, tracer, basis, settings, kRotations);
+  const auto operatorsBuilt = std::chrono::steady_clock::now();
+  Volume volume = emptyVolume(grid, basis, probeBaker);
+
+  const Eigen::Vector3i bricks = grid.brickCounts();
   const int brickCount = bricks.x() * bricks.y() * bricks.z();
   std::vector<RayCounts> brickRays(brickCount);
   std::vector<RoundTally> brickTallies(brickCount);
   std::atomic<std::int64_t> bricksDone{0};
-
   tbb::parallel_for(tbb::blocked_range<int>(0, brickCount, 1), [&](const tbb::blocked_range<int>& range) {
     std::vector<float> coefficients, visibility;
     for (int b = range.begin(); b < range.end(); ++b) {
       const Eigen::Vector3i brick(b % bricks.x(), (b / bricks.x()) % bricks.y(), b / (bricks.x() * bricks.y()));
-      const Eigen::Vector3i lo = brick * kBrickSize;
-      const Eigen::Vector3i hi = (lo.array() + kBrickSize).min(grid.dims.array());
-      RayCounts& counts = brickRays[b];
-      std::vector<ProbeTask> candidates;
-      for (int k = lo.z(); k < hi.z(); ++k)
-        for (int j = lo.y(); j < hi.y(); ++j)
-          for (int i = lo.x(); i < hi.x(); ++i)
-            candidates.push_back({grid.position(i, j, k).cast<float>(), std::uint64_t(grid.linearIndex(i, j, k)),
-                                  rotationOf(i, j, k)});
-      if (settings.transport.probeValidity) {
-        // Placed side by side like the probes' tracing (ProbeBaker::bake). Isolated so that a
-        // waiting thread does not start a brick of its own inside this one.
-        std::vector<std::int64_t> validityRays(candidates.size(), 0);
-        tbb::this_task_arena::isolate([&] {
-          tbb::parallel_for(std::size_t(0), candidates.size(), [&](std::size_t c) {
-            const std::int64_t index = std::int64_t(candidates[c].id);
-            const ProbePlacement placement = placeProbe(tracer, candidates[c].position, float(grid.spacing),
-                                                        testDirections, validityOptions, &validityRays[c]);
-            volume.states[index] = placement.state;
-            volume.offsets[index] = placement.offset;
-            candidates[c].position += placement.offset;
-          });
-        });
-        for (std::int64_t n : validityRays) counts.validity += n;
-      }
-      std::vector<ProbeTask> tasks;
-      for (const ProbeTask& candidate : candidates)
-        if (volume.states[candidate.id] != ProbeState::Invalid) tasks.push_back(candidate);
-      coefficients.resize(tasks.size() * volume.coefficientsPerProbe);
-      visibility.resize(tasks.size() * volume.visibilityPerProbe);
-      probeBaker.bake(tasks, coefficients.data(), visibility.data(), &counts, nullptr, &brickTallies[b]);
-      for (std::size_t t = 0; t < tasks.size(); ++t) {
-        std::copy_n(coefficients.data() + t * volume.coefficientsPerProbe, volume.coefficientsPerProbe,
-                    volume.coefficients.data() + tasks[t].id * volume.coefficientsPerProbe);
-        std::copy_n(visibility.data() + t * volume.visibilityPerProbe, volume.visibilityPerProbe,
-                    volume.visibility.data() + tasks[t].id * volume.visibilityPerProbe);
-      }
+      bakeBrick(tracer, grid, settings, probeBaker, brick, volume, brickRays[b], brickTallies[b], coefficients,
+                visibility);
       if (progress) progress(++bricksDone, brickCount);
     }
   });
   fillInvalidProbes(grid, volume.states, volume.coefficientsPerProbe, volume.coefficients);
   fillInvalidProbes(grid, volume.states, volume.visibilityPerProbe, volume.visibility);
-
-  for (std::size_t i = 0; i < volume.coefficients.size(); ++i)
-    if (!std::isfinite(volume.coefficients[i]))
-      throw NumericalError(fmt::format("probe {} of the bake has a non-finite coefficient (the scene's radiance "
-                                       "overflows float); nothing was written",
-                                       i / volume.coefficientsPerProbe));
-  for (std::size_t i = 0; i < volume.visibility.size(); ++i)
-    if (!std::isfinite(volume.visibility[i]))
-      throw NumericalError(fmt::format("probe {} of the bake has a non-finite sky visibility; nothing was written",
-                                       i / volume.visibilityPerProbe));
+  requireFinite(volume);
 
   if (stats) {
     stats->probes = grid.probeCount();

@@ -2,18 +2,15 @@
 #include <cstdint>
 #include <functional>
 
-#include "bake/Basis.h"
 #include "bake/ProbeBaker.h"
-#include "bake/ProbeGrid.h"
 #include "bake/Transport.h"
-#include "bake/Volume.h"
+#include "basis/Basis.h"
 #include "scene/RayTracer.h"
 #include "scene/Scene.h"
+#include "volume/ProbeGrid.h"
+#include "volume/Volume.h"
 
 namespace baker {
-
-// Probes are baked in bricks of kBrickSize³: the unit of parallel work and an OpenVDB leaf.
-constexpr int kBrickSize = 8;
 
 struct BakeStats {
   std::int64_t probes = 0;

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-#include "bake/DirectionSet.h"
+#include "basis/DirectionSet.h"
 #include "scene/Environment.h"
 
 namespace baker {

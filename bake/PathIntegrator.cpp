@@ -105,6 +105,12 @@ struct PathIntegrator::Vertex {
 };
 
 // Per-thread arrays reused from probe to probe: a bake traces millions of short wavefronts.
+struct PathIntegrator::Aimed {  // a vertex's ray aimed near a light
+  int path;
+  int light;
+  Eigen::Vector3f throughput;  // to the aimed ray's first hit, with the aim's MIS share
+};
+
 struct PathIntegrator::Scratch {
   struct Pending {  // what a shadow ray adds to its path's radiance if nothing blocks it
     int path;
@@ -122,11 +128,6 @@ struct PathIntegrator::Scratch {
   ScratchBuffer<EmitterPoint> points;
   ScratchBuffer<SurfacePoint> emitterSurfaces;  // of the points on textured or alpha-tested emitters
   ScratchBuffer<float> pdfs;
-  struct Aimed {  // a vertex's ray aimed near a light
-    int path;
-    int light;
-    Eigen::Vector3f throughput;  // to the aimed ray's first hit, with the aim's MIS share
-  };
   ScratchBuffer<Aimed> aimed;
   ScratchBuffer<double> aimWeights;  // of one vertex, per light aimed at
   ScratchBuffer<Ray> shadowRays;
@@ -231,153 +232,164 @@ void PathIntegrator::trace(const Eigen::Vector3f& position, std::uint64_t probeI
   }
 }
 
+// Shadow rays of one kind of next event, traced as one stream once every vertex has made its
+// own; each adds its contribution to its path's radiance if nothing blocks it.
+struct PathIntegrator::ShadowBatch {
+  Ray* rays;
+  Scratch::Pending* pending;
+  int count = 0;
+
+  ShadowBatch(Scratch& scratch, std::size_t most)
+      : rays(scratch.rays.reserve(most)), pending(scratch.pending.reserve(most)) {}
+  void resolve(const RayTracer& tracer, Scratch& scratch, Eigen::Vector3f* radiance, std::int64_t* counter) const {
+    if (count == 0) return;
+    bool* blocked = scratch.blocked.reserve(std::size_t(count));
+    tracer.occluded(rays, count, blocked);
+    for (int k = 0; k < count; ++k)
+      if (!blocked[k]) radiance[pending[k].path] += pending[k].contribution;
+    *counter += count;
+  }
+};
+
 void PathIntegrator::addNextEvents(Vertex* vertices, int count, Scratch& scratch, Eigen::Vector3f* radiance,
                                    RayCounts* counts, const ProbeView* firstHits,
                                    const Eigen::Vector3f* directions) const {
-  Ray* rays = nullptr;
-  Scratch::Pending* pending = nullptr;
-  int shadowRays = 0;
-  auto start = [&](std::size_t most) {
-    rays = scratch.rays.reserve(most);
-    pending = scratch.pending.reserve(most);
-    shadowRays = 0;
-  };
-  auto resolve = [&](std::int64_t* counter) {
-    if (shadowRays == 0) return;
-    bool* blocked = scratch.blocked.reserve(std::size_t(shadowRays));
-    tracer_.occluded(rays, shadowRays, blocked);
-    for (int k = 0; k < shadowRays; ++k)
-      if (!blocked[k]) radiance[pending[k].path] += pending[k].contribution;
-    *counter += shadowRays;
-  };
+  if (settings_.punctualLights && !scene_.lights.empty())
+    addPunctualEvents(vertices, count, scratch, radiance, counts, firstHits, directions);
+  if (sampleEmitters_) addEmitterEvents(vertices, count, scratch, radiance, counts);
+  if (sampleEnvironment_) addEnvironmentEvents(vertices, count, scratch, radiance, counts);
+}
 
-  if (settings_.punctualLights && !scene_.lights.empty()) {
-    start(std::size_t(count) * scene_.lights.size());
-    for (int k = 0; k < count; ++k) {
-      const Vertex& v = vertices[k];
-      const Eigen::Vector3f reflect = v.throughput.cwiseProduct(v.albedo) * kInvPi;
-      // Reached by a continuation from a vertex that also aimed at the lights: the lights'
-      // terms here share with that aim.
-      const bool aimedFrom = !firstHits && aimFromVertices_ && v.arrivalPdf > 0.0f;
-      const double aimTotal = aimedFrom ? v.aimTotal : 0.0;
-      for (std::size_t l = 0; l < scene_.lights.size(); ++l) {
-        const PunctualLight& light = scene_.lights[l];
-        Eigen::Vector3f toLight;
-        float distance = std::numeric_limits<float>::infinity();
-        Eigen::Vector3f irradiance = light.color * light.intensity;  // on a surface facing the light
-        if (light.type == PunctualLight::Type::Directional) {
-          toLight = -light.direction;
-        } else {
-          const Eigen::Vector3f d = light.position - v.origin;
-          distance = d.norm();
-          if (!(distance > 0.0f)) continue;
-          toLight = d / distance;
-          irradiance /= distance * distance;
-          if (light.type == PunctualLight::Type::Spot) irradiance *= light.spotFalloff(-toLight.dot(light.direction));
+void PathIntegrator::addPunctualEvents(Vertex* vertices, int count, Scratch& scratch, Eigen::Vector3f* radiance,
+                                       RayCounts* counts, const ProbeView* firstHits,
+                                       const Eigen::Vector3f* directions) const {
+  ShadowBatch batch(scratch, std::size_t(count) * scene_.lights.size());
+  for (int k = 0; k < count; ++k) {
+    const Vertex& v = vertices[k];
+    const Eigen::Vector3f reflect = v.throughput.cwiseProduct(v.albedo) * kInvPi;
+    // Reached by a continuation from a vertex that also aimed at the lights: the lights'
+    // terms here share with that aim.
+    const bool aimedFrom = !firstHits && aimFromVertices_ && v.arrivalPdf > 0.0f;
+    const double aimTotal = aimedFrom ? v.aimTotal : 0.0;
+    for (std::size_t l = 0; l < scene_.lights.size(); ++l) {
+      const PunctualLight& light = scene_.lights[l];
+      Eigen::Vector3f toLight;
+      float distance = std::numeric_limits<float>::infinity();
+      Eigen::Vector3f irradiance = light.color * light.intensity;  // on a surface facing the light
+      if (light.type == PunctualLight::Type::Directional) {
+        toLight = -light.direction;
+      } else {
+        const Eigen::Vector3f d = light.position - v.origin;
+        distance = d.norm();
+        if (!(distance > 0.0f)) continue;
+        toLight = d / distance;
+        irradiance /= distance * distance;
+        if (light.type == PunctualLight::Type::Spot) irradiance *= light.spotFalloff(-toLight.dot(light.direction));
+      }
+      const float cosine = v.normal.dot(toLight);
+      // A light almost on the surface can exceed single precision: dropped, as at probes.
+      if (cosine <= 0.0f || !(irradiance.maxCoeff() > 0.0f) || !irradiance.allFinite()) continue;
+      float share = 1.0f;
+      if (light.type != PunctualLight::Type::Directional) {
+        if (firstHits)
+          share = firstHits->sampler->latticeSpotWeight(*firstHits, int(l), directions[v.path]);
+        else if (aimTotal > 0.0) {
+          const LightAim::Aim aim = lightAim_.aim(int(l), v.previous);
+          share = powerHeuristic(v.arrivalPdf, float(aim.weight / aimTotal) * LightAim::density(aim, v.arrival));
         }
-        const float cosine = v.normal.dot(toLight);
-        // A light almost on the surface can exceed single precision: dropped, as at probes.
-        if (cosine <= 0.0f || !(irradiance.maxCoeff() > 0.0f) || !irradiance.allFinite()) continue;
-        float share = 1.0f;
-        if (light.type != PunctualLight::Type::Directional) {
-          if (firstHits)
-            share = firstHits->sampler->latticeSpotWeight(*firstHits, int(l), directions[v.path]);
-          else if (aimTotal > 0.0) {
-            const LightAim::Aim aim = lightAim_.aim(int(l), v.previous);
-            share = powerHeuristic(v.arrivalPdf, float(aim.weight / aimTotal) * LightAim::density(aim, v.arrival));
-          }
-        }
-        rays[shadowRays] = {v.origin, toLight, 0.0f, distance};
-        pending[shadowRays++] = {v.path, reflect.cwiseProduct(irradiance) * (cosine * share)};
       }
+      batch.rays[batch.count] = {v.origin, toLight, 0.0f, distance};
+      batch.pending[batch.count++] = {v.path, reflect.cwiseProduct(irradiance) * (cosine * share)};
     }
-    resolve(&counts->punctualShadow);
   }
+  batch.resolve(tracer_, scratch, radiance, &counts->punctualShadow);
+}
 
-  if (sampleEmitters_) {
-    // Every vertex's point on an emitter is drawn (and its texels prefetched) before any is
-    // shaded, so that the scattered emission lookups wait for memory together.
-    start(std::size_t(count));
-    Scratch::EmitterPoint* points = scratch.points.reserve(std::size_t(count));
-    SurfacePoint* surfaces = scratch.emitterSurfaces.reserve(std::size_t(count));
-    for (int k = 0; k < count; ++k) {
-      PathRandom& random = vertices[k].random;
-      const float xiChoice = random.uniform(), xi1 = random.uniform(), xi2 = random.uniform();
-      const float xiCoverage = random.uniform();
-      points[k] = {&vertices[k], emitters_.sample(xiChoice, xi1, xi2), xiCoverage};
-      const EmitterSampler::Sample& s = points[k].sample;
-      if (s.emitter->textured || s.emitter->alphaTested) {
-        locateSurface(scene_, s.emitter->mesh, s.emitter->triangle, s.u, s.v, &surfaces[k]);
-        prefetchSurface(surfaces[k]);
-      }
+void PathIntegrator::addEmitterEvents(Vertex* vertices, int count, Scratch& scratch, Eigen::Vector3f* radiance,
+                                      RayCounts* counts) const {
+  // Every vertex's point on an emitter is drawn (and its texels prefetched) before any is
+  // shaded, so that the scattered emission lookups wait for memory together.
+  ShadowBatch batch(scratch, std::size_t(count));
+  Scratch::EmitterPoint* points = scratch.points.reserve(std::size_t(count));
+  SurfacePoint* surfaces = scratch.emitterSurfaces.reserve(std::size_t(count));
+  for (int k = 0; k < count; ++k) {
+    PathRandom& random = vertices[k].random;
+    const float xiChoice = random.uniform(), xi1 = random.uniform(), xi2 = random.uniform();
+    const float xiCoverage = random.uniform();
+    points[k] = {&vertices[k], emitters_.sample(xiChoice, xi1, xi2), xiCoverage};
+    const EmitterSampler::Sample& s = points[k].sample;
+    if (s.emitter->textured || s.emitter->alphaTested) {
+      locateSurface(scene_, s.emitter->mesh, s.emitter->triangle, s.u, s.v, &surfaces[k]);
+      prefetchSurface(surfaces[k]);
     }
-    for (int first = 0; first < count; first += kLanes) {
-      const int n = std::min(kLanes, count - first);
-      // The geometry of each vertex's shadow ray, in lanes. Lanes past the last vertex repeat
-      // it (nothing is drawn here); what they compute is not read.
-      Lanes dx, dy, dz, nx, ny, nz, fx, fy, fz, pdfArea;
-      for (int j = 0; j < kLanes; ++j) {
-        const Scratch::EmitterPoint& point = points[first + std::min(j, n - 1)];
-        const Vertex& v = *point.vertex;
-        const EmitterSampler::Emitter& e = *point.sample.emitter;
-        dx[j] = point.sample.point.x() - v.origin.x();
-        dy[j] = point.sample.point.y() - v.origin.y();
-        dz[j] = point.sample.point.z() - v.origin.z();
-        nx[j] = v.normal.x(), ny[j] = v.normal.y(), nz[j] = v.normal.z();
-        fx[j] = e.frontNormal.x(), fy[j] = e.frontNormal.y(), fz[j] = e.frontNormal.z();
-        pdfArea[j] = e.pdfArea;
-      }
-      // Sums of three terms as Eigen's Vector3f squaredNorm and dot add them (its unrolled
-      // reduction splits three as one and two): x + (y + z).
-      const Lanes squaredDistance = dx * dx + (dy * dy + dz * dz);
-      const Lanes distance = exactSqrt(squaredDistance);
-      const Lanes inverse = 1.0f / distance;
-      const Lanes tx = dx * inverse, ty = dy * inverse, tz = dz * inverse;
-      const Lanes cosine = nx * tx + (ny * ty + nz * tz);
-      const Lanes cosLight = -(fx * tx + (fy * ty + fz * tz));
-      // The power heuristic's weight over the light's solid-angle pdf, in one division:
-      // with pdfLight = a/c (a = pdfArea·r², c = |cosθ_light|) and the BSDF's b = cosθ/π,
-      // (pdfLight² / (pdfLight² + b²)) / pdfLight = a·c / (a² + b²·c²).
-      const Lanes a = pdfArea * squaredDistance, c = cosLight.abs(), b = cosine * kInvPi;
-      const Lanes weightOverPdf = a * c / (a * a + b * b * c * c);
-      const Lanes reflected = kInvPi * cosine * weightOverPdf;
-      for (int j = 0; j < n; ++j) {
-        const int k = first + j;
-        const Vertex& v = *points[k].vertex;
-        const EmitterSampler::Emitter& e = *points[k].sample.emitter;
-        if (!(distance[j] > 0.0f) || cosine[j] <= 0.0f) continue;
-        if (std::abs(cosLight[j]) < 1e-6f || (cosLight[j] < 0.0f && !e.doubleSided)) continue;
-        if (settings_.alphaFilters && e.alphaTested && !surfaceStopsRay(surfaces[k], points[k].xiCoverage))
-          continue;  // a transparent texel
-        const Eigen::Vector3f emission = e.textured ? surfaceEmission(surfaces[k]) : e.emission;
-        const Eigen::Vector3f contribution =
-            v.throughput.cwiseProduct(v.albedo).cwiseProduct(emission) * reflected[j];
-        if (!(contribution.maxCoeff() > 0.0f) || !contribution.allFinite()) continue;
-        rays[shadowRays] = {v.origin, {tx[j], ty[j], tz[j]}, 0.0f, distance[j] * (1.0f - kShadowShortening)};
-        pending[shadowRays++] = {v.path, contribution};
-      }
-    }
-    resolve(&counts->emitterShadow);
   }
-
-  if (sampleEnvironment_) {
-    const Environment& sky = scene_.environment;
-    start(std::size_t(count));
-    for (int k = 0; k < count; ++k) {
-      Vertex& v = vertices[k];
-      const float xi1 = v.random.uniform(), xi2 = v.random.uniform();
-      const Environment::Sample s = sky.sample(xi1, xi2);
-      const float cosine = v.normal.dot(s.direction);
-      if (!(s.pdf > 0.0f) || cosine <= 0.0f) continue;
-      const float weight = powerHeuristic(s.pdf, cosine * kInvPi);
+  for (int first = 0; first < count; first += kLanes) {
+    const int n = std::min(kLanes, count - first);
+    // The geometry of each vertex's shadow ray, in lanes. Lanes past the last vertex repeat
+    // it (nothing is drawn here); what they compute is not read.
+    Lanes dx, dy, dz, nx, ny, nz, fx, fy, fz, pdfArea;
+    for (int j = 0; j < kLanes; ++j) {
+      const Scratch::EmitterPoint& point = points[first + std::min(j, n - 1)];
+      const Vertex& v = *point.vertex;
+      const EmitterSampler::Emitter& e = *point.sample.emitter;
+      dx[j] = point.sample.point.x() - v.origin.x();
+      dy[j] = point.sample.point.y() - v.origin.y();
+      dz[j] = point.sample.point.z() - v.origin.z();
+      nx[j] = v.normal.x(), ny[j] = v.normal.y(), nz[j] = v.normal.z();
+      fx[j] = e.frontNormal.x(), fy[j] = e.frontNormal.y(), fz[j] = e.frontNormal.z();
+      pdfArea[j] = e.pdfArea;
+    }
+    // Sums of three terms as Eigen's Vector3f squaredNorm and dot add them (its unrolled
+    // reduction splits three as one and two): x + (y + z).
+    const Lanes squaredDistance = dx * dx + (dy * dy + dz * dz);
+    const Lanes distance = exactSqrt(squaredDistance);
+    const Lanes inverse = 1.0f / distance;
+    const Lanes tx = dx * inverse, ty = dy * inverse, tz = dz * inverse;
+    const Lanes cosine = nx * tx + (ny * ty + nz * tz);
+    const Lanes cosLight = -(fx * tx + (fy * ty + fz * tz));
+    // The power heuristic's weight over the light's solid-angle pdf, in one division:
+    // with pdfLight = a/c (a = pdfArea·r², c = |cosθ_light|) and the BSDF's b = cosθ/π,
+    // (pdfLight² / (pdfLight² + b²)) / pdfLight = a·c / (a² + b²·c²).
+    const Lanes a = pdfArea * squaredDistance, c = cosLight.abs(), b = cosine * kInvPi;
+    const Lanes weightOverPdf = a * c / (a * a + b * b * c * c);
+    const Lanes reflected = kInvPi * cosine * weightOverPdf;
+    for (int j = 0; j < n; ++j) {
+      const int k = first + j;
+      const Vertex& v = *points[k].vertex;
+      const EmitterSampler::Emitter& e = *points[k].sample.emitter;
+      if (!(distance[j] > 0.0f) || cosine[j] <= 0.0f) continue;
+      if (std::abs(cosLight[j]) < 1e-6f || (cosLight[j] < 0.0f && !e.doubleSided)) continue;
+      if (settings_.alphaFilters && e.alphaTested && !surfaceStopsRay(surfaces[k], points[k].xiCoverage))
+        continue;  // a transparent texel
+      const Eigen::Vector3f emission = e.textured ? surfaceEmission(surfaces[k]) : e.emission;
       const Eigen::Vector3f contribution =
-          v.throughput.cwiseProduct(v.albedo).cwiseProduct(s.radiance) * (kInvPi * cosine * weight / s.pdf);
+          v.throughput.cwiseProduct(v.albedo).cwiseProduct(emission) * reflected[j];
       if (!(contribution.maxCoeff() > 0.0f) || !contribution.allFinite()) continue;
-      rays[shadowRays] = {v.origin, s.direction, 0.0f, std::numeric_limits<float>::infinity()};
-      pending[shadowRays++] = {v.path, contribution};
+      batch.rays[batch.count] = {v.origin, {tx[j], ty[j], tz[j]}, 0.0f, distance[j] * (1.0f - kShadowShortening)};
+      batch.pending[batch.count++] = {v.path, contribution};
     }
-    resolve(&counts->environmentShadow);
   }
+  batch.resolve(tracer_, scratch, radiance, &counts->emitterShadow);
+}
+
+void PathIntegrator::addEnvironmentEvents(Vertex* vertices, int count, Scratch& scratch, Eigen::Vector3f* radiance,
+                                          RayCounts* counts) const {
+  const Environment& sky = scene_.environment;
+  ShadowBatch batch(scratch, std::size_t(count));
+  for (int k = 0; k < count; ++k) {
+    Vertex& v = vertices[k];
+    const float xi1 = v.random.uniform(), xi2 = v.random.uniform();
+    const Environment::Sample s = sky.sample(xi1, xi2);
+    const float cosine = v.normal.dot(s.direction);
+    if (!(s.pdf > 0.0f) || cosine <= 0.0f) continue;
+    const float weight = powerHeuristic(s.pdf, cosine * kInvPi);
+    const Eigen::Vector3f contribution =
+        v.throughput.cwiseProduct(v.albedo).cwiseProduct(s.radiance) * (kInvPi * cosine * weight / s.pdf);
+    if (!(contribution.maxCoeff() > 0.0f) || !contribution.allFinite()) continue;
+    batch.rays[batch.count] = {v.origin, s.direction, 0.0f, std::numeric_limits<float>::infinity()};
+    batch.pending[batch.count++] = {v.path, contribution};
+  }
+  batch.resolve(tracer_, scratch, radiance, &counts->environmentShadow);
 }
 
 void PathIntegrator::aimAtLights(Vertex* vertices, int count, Scratch& scratch, Eigen::Vector3f* radiance,
@@ -386,7 +398,7 @@ void PathIntegrator::aimAtLights(Vertex* vertices, int count, Scratch& scratch, 
   // its first hit takes that light's next-event term, weighted against the continuation's
   // next vertex, whose term addNextEvents weights the other way (power heuristic).
   Ray* rays = scratch.rays.reserve(std::size_t(count));
-  Scratch::Aimed* aimed = scratch.aimed.reserve(std::size_t(count));
+  Aimed* aimed = scratch.aimed.reserve(std::size_t(count));
   const std::vector<int>& aimable = lightAim_.lights();
   double* weights = scratch.aimWeights.reserve(aimable.size());
   int aimedRays = 0;
@@ -418,6 +430,11 @@ void PathIntegrator::aimAtLights(Vertex* vertices, int count, Scratch& scratch, 
     rays[aimedRays] = {v.origin, direction, 0.0f, std::numeric_limits<float>::infinity()};
     aimed[aimedRays++] = {v.path, light, throughput};
   }
+  shadeAimedHits(rays, aimed, aimedRays, scratch, radiance, counts);
+}
+
+void PathIntegrator::shadeAimedHits(const Ray* rays, const Aimed* aimed, int aimedRays, Scratch& scratch,
+                                    Eigen::Vector3f* radiance, RayCounts* counts) const {
   Ray* shadow = scratch.shadowRays.reserve(std::size_t(aimedRays));
   Scratch::Pending* pending = scratch.pending.reserve(std::size_t(aimedRays));
   int shadowRays = 0;
@@ -432,7 +449,7 @@ void PathIntegrator::aimAtLights(Vertex* vertices, int count, Scratch& scratch, 
       const Hit& hit = hits[i];
       if (hit.missed()) continue;
       const Ray& ray = rays[first + i];
-      const Scratch::Aimed& a = aimed[first + i];
+      const Aimed& a = aimed[first + i];
       const SurfacePoint& surface = surfaceAt(hit, &surfaces[i]);
       const Eigen::Vector3f albedo = surfaceAlbedo(surface);
       if (!(albedo.maxCoeff() > 0.0f)) continue;
@@ -463,10 +480,7 @@ void PathIntegrator::aimAtLights(Vertex* vertices, int count, Scratch& scratch, 
   counts->aimedBounceShadow += shadowRays;
 }
 
-int PathIntegrator::continuePaths(Vertex* vertices, int count, bool keepVertices, Scratch& scratch,
-                                  Eigen::Vector3f* radiance, RayCounts* counts) const {
-  Ray* rays = scratch.rays.reserve(std::size_t(count));
-  float* bsdfPdf = scratch.pdfs.reserve(std::size_t(count));
+int PathIntegrator::sampleContinuations(Vertex* vertices, int count, Ray* rays, float* bsdfPdf) const {
   // The paths that go on are compacted in place (vertex k traces rays[k]), and so are the
   // vertices their rays make: a vertex is written only over one already read.
   int survivors = 0;
@@ -501,6 +515,14 @@ int PathIntegrator::continuePaths(Vertex* vertices, int count, bool keepVertices
     }
   }
 
+  return survivors;
+}
+
+int PathIntegrator::continuePaths(Vertex* vertices, int count, bool keepVertices, Scratch& scratch,
+                                  Eigen::Vector3f* radiance, RayCounts* counts) const {
+  Ray* rays = scratch.rays.reserve(std::size_t(count));
+  float* bsdfPdf = scratch.pdfs.reserve(std::size_t(count));
+  const int survivors = sampleContinuations(vertices, count, rays, bsdfPdf);
   const Environment& sky = scene_.environment;
   Hit hits[8];
   SurfacePoint surfaces[8];

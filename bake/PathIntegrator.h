@@ -50,6 +50,8 @@ class PathIntegrator {
  private:
   struct Vertex;
   struct Scratch;
+  struct ShadowBatch;
+  struct Aimed;
   // `firstHits`: the vertices are the first hits of the probe's lattice `directions`, and their
   // punctual terms keep the lattice's share (DirectView).
   void addNextEvents(Vertex* vertices, int count, Scratch& scratch, Eigen::Vector3f* radiance, RayCounts* counts,
@@ -59,6 +61,18 @@ class PathIntegrator {
   // and the aimed ray finds it often (LightAim), both combined by MIS.
   void aimAtLights(Vertex* vertices, int count, Scratch& scratch, Eigen::Vector3f* radiance,
                    RayCounts* counts) const;
+  void addPunctualEvents(Vertex* vertices, int count, Scratch& scratch, Eigen::Vector3f* radiance, RayCounts* counts,
+                         const ProbeView* firstHits, const Eigen::Vector3f* directions) const;
+  void addEmitterEvents(Vertex* vertices, int count, Scratch& scratch, Eigen::Vector3f* radiance,
+                        RayCounts* counts) const;
+  void addEnvironmentEvents(Vertex* vertices, int count, Scratch& scratch, Eigen::Vector3f* radiance,
+                            RayCounts* counts) const;
+  // The aimed rays' first hits, each lit by the light it aimed at (one shadow ray each).
+  void shadeAimedHits(const Ray* rays, const Aimed* aimed, int aimedRays, Scratch& scratch, Eigen::Vector3f* radiance,
+                      RayCounts* counts) const;
+  // Draws each vertex's cosine-weighted continuation and plays Russian roulette; the survivors'
+  // rays and BSDF pdfs are compacted to the front. Returns how many survive.
+  int sampleContinuations(Vertex* vertices, int count, Ray* rays, float* bsdfPdf) const;
   // Returns how many vertices the continued paths made (in place of the old ones).
   int continuePaths(Vertex* vertices, int count, bool keepVertices, Scratch& scratch, Eigen::Vector3f* radiance,
                     RayCounts* counts) const;

@@ -11,12 +11,12 @@
 #include <mutex>
 #include <numeric>
 
-#include "bake/DirectionSet.h"
-#include "bake/NonNegativeProjection.h"
 #include "bake/PathRandom.h"
-#include "bake/ProjectionOperator.h"
 #include "bake/ScratchBuffer.h"
-#include "bake/SphericalHarmonics.h"
+#include "basis/DirectionSet.h"
+#include "basis/NonNegativeProjection.h"
+#include "basis/ProjectionOperator.h"
+#include "basis/SphericalHarmonics.h"
 
 namespace baker {
 namespace {
@@ -233,94 +233,174 @@ ProbeBaker::Rounds ProbeBaker::traceRounds(const ProbeTask& task, const std::vec
   return {traced, statistics.converged(convergence)};
 }
 
+// Arrivals, per probe and channel in the colour space: SH coefficients of the punctual lights
+// (to their own order) and of the direct-view samples (to the lattice's).
+struct ProbeBaker::ArrivalHarmonics {
+  ArrivalHarmonics(const SphericalHarmonics& h, int probes) : harmonics(&h) { sh.setZero(h.count(), 3 * probes); }
+  const SphericalHarmonics* harmonics;
+  Eigen::MatrixXd sh;  // count × 3p
+  std::atomic<bool> any{false};
+
+  void add(const std::vector<PunctualAtProbe::Arrival>& arrivals, int taskIndex, ColorSpace space) {
+    if (arrivals.empty()) return;
+    any = true;
+    const int count = harmonics->count();
+    const int probes = int(sh.cols()) / 3;
+    thread_local std::vector<double> rgbSh;
+    rgbSh.assign(3 * std::size_t(count), 0.0);
+    PunctualAtProbe::addHarmonics(*harmonics, arrivals, rgbSh.data());
+    for (int i = 0; i < count; ++i) {
+      const Eigen::Vector3d rgb(rgbSh[i], rgbSh[count + i], rgbSh[2 * count + i]);
+      const Eigen::Vector3d value = toColorSpace(space, rgb.cast<float>()).cast<double>();
+      for (int c = 0; c < 3; ++c) sh(i, c * probes + taskIndex) = value[c];
+    }
+  }
+};
+
+// Probes in order of rotation, so that each rotation's columns are one block: per rotation,
+// channel 0 of its probes, then channel 1, channel 2, visibility. (A fixed lattice only.)
+struct ProbeBaker::RotationBlocks {
+  struct Block {
+    int rotation, first, count;
+  };
+  std::vector<int> order;    // task indices in rotation order
+  std::vector<Block> blocks;
+  std::vector<int> blockOf;  // of each probe in rotation order
+
+  explicit RotationBlocks(const std::vector<ProbeTask>& tasks) : order(tasks.size()), blockOf(tasks.size()) {
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return tasks[a].rotation < tasks[b].rotation; });
+    for (std::size_t s = 0; s < tasks.size(); ++s) {
+      const int rotation = tasks[order[s]].rotation;
+      if (blocks.empty() || blocks.back().rotation != rotation) blocks.push_back({rotation, int(s), 0});
+      ++blocks.back().count;
+      blockOf[s] = int(blocks.size()) - 1;
+    }
+  }
+};
+
+void ProbeBaker::traceLattice(const ProbeTask& task, const RotationBlocks& rotations, int s, SampleColumns& columns,
+                              std::vector<PunctualAtProbe::Arrival>* direct, RayCounts* counts,
+                              ProbeSamples* samples) const {
+  const int rays = settings_.rays;
+  thread_local std::vector<Eigen::Vector3f> radiance;
+  thread_local std::vector<float> sky;
+  radiance.resize(rays);
+  sky.resize(rays);
+  const RotationBlocks::Block& block = rotations.blocks[rotations.blockOf[s]];
+  const std::vector<Eigen::Vector3f>& dirs = directions_[block.rotation];
+  const int within = s - block.first;
+  const ProbeView view = directView_.at(task.position, rays);
+  integrator_.trace(task.position, task.id, dirs.data(), rays, radiance.data(), sky.data(), counts, &view);
+  const int base = 4 * block.first;
+  for (int r = 0; r < rays; ++r) {
+    const Eigen::Vector3f value = toColorSpace(basis_.colorSpace(), radiance[r]);
+    for (int c = 0; c < 3; ++c) columns(r, base + c * block.count + within) = value[c];
+    columns(r, base + 3 * block.count + within) = sky[r];
+  }
+  if (!directView_.empty()) directView_.sample(view, task.id, direct, counts);
+  if (samples) {
+    samples->directions = dirs;
+    samples->weights = weights_;
+    samples->radiance = radiance;
+    samples->visibility = sky;
+  }
+}
+
+void ProbeBaker::projectLattice(const SampleColumns& columns, const RotationBlocks& rotations, float* coefficients,
+                                float* visibility) const {
+  // Each coefficient is a dot product of an operator row with a probe's samples, written
+  // straight to the output: the brick's operator-times-samples product, coefficient by
+  // coefficient. Eigen's general product cost two and a half times as much here, most of it
+  // repacking these short, wide sample blocks on every call.
+  auto project = [&](const auto& fromSamples, int column, int functions, float scale, float* out) {
+    const auto samples = columns.col(column);
+    for (int f = 0; f < functions; ++f) out[f] = fromSamples.row(f).dot(samples) * scale;
+  };
+  for (const RotationBlocks::Block& block : rotations.blocks) {
+    const int base = 4 * block.first;
+    for (const ChannelGroup& group : groups_) {
+      const auto& fromSamples = group.fromSamples[block.rotation];
+      for (int c = 0; c < group.channelCount; ++c) {
+        const int channel = group.firstChannel + c;
+        const int offset = basis_.coefficientOffset(channel);
+        for (int within = 0; within < block.count; ++within)
+          project(fromSamples, base + channel * block.count + within, group.functions, 1.0f,
+                  coefficients + std::size_t(rotations.order[block.first + within]) * coefficientsPerProbe_ + offset);
+      }
+    }
+    for (int within = 0; within < block.count; ++within)
+      project(groups_[0].fromSamples[block.rotation], base + 3 * block.count + within, visibilityPerProbe_,
+              float(1.0 / M_PI), visibility + std::size_t(rotations.order[block.first + within]) * visibilityPerProbe_);
+  }
+}
+
+void ProbeBaker::projectSh(const Eigen::MatrixXd ChannelGroup::*fromSh, const Eigen::MatrixXd& sh, int p,
+                           float* coefficients, bool accumulate) const {
+  for (const ChannelGroup& group : groups_) {
+    const Eigen::MatrixXd result = group.*fromSh * sh.middleCols(group.firstChannel * p, group.channelCount * p);
+    for (int c = 0; c < group.channelCount; ++c) {
+      const int offset = basis_.coefficientOffset(group.firstChannel + c);
+      for (int q = 0; q < p; ++q) {
+        float* out = coefficients + std::size_t(q) * coefficientsPerProbe_ + offset;
+        for (int f = 0; f < group.functions; ++f) {
+          if (accumulate)
+            out[f] += float(result(f, c * p + q));
+          else
+            out[f] = float(result(f, c * p + q));
+        }
+      }
+    }
+  }
+}
+
+void ProbeBaker::projectLatticeSh(Eigen::MatrixXd& latticeSh, int p, float* coefficients, float* visibility) const {
+  // The lattices' SH means → irradiance coefficients, through the operator the direct-view
+  // samples take.
+  std::fill_n(coefficients, std::size_t(p) * coefficientsPerProbe_, 0.0f);
+  latticeSh.middleCols(3 * p, p) /= M_PI;
+  projectSh(&ChannelGroup::fromDirectSh, latticeSh, p, coefficients, false);
+  const Eigen::MatrixXd seen = groups_[0].fromDirectSh * latticeSh.middleCols(3 * p, p);
+  for (int q = 0; q < p; ++q)
+    for (int f = 0; f < visibilityPerProbe_; ++f) visibility[std::size_t(q) * visibilityPerProbe_ + f] = float(seen(f, q));
+}
+
+void ProbeBaker::constrainNonNegative(int p, float* coefficients, float* visibility) const {
+  // The linear coefficients carry the moments m = G·c; re-solve them with c ≥ 0. Only
+  // quantities that cannot be negative are constrained: RGB channels, luminance Y and sky
+  // visibility, not the signed chroma Co and Cg.
+  auto constrain = [](const ChannelGroup& group, float* out) {
+    const Eigen::VectorXd linear = Eigen::Map<Eigen::VectorXf>(out, group.functions).cast<double>();
+    const Eigen::VectorXd constrained = nonNegativeProjection(group.gram, group.gram * linear);
+    for (int f = 0; f < group.functions; ++f) out[f] = float(constrained[f]);
+  };
+  for (const ChannelGroup& group : groups_)
+    for (int c = 0; c < group.channelCount; ++c) {
+      const int channel = group.firstChannel + c;
+      if (basis_.colorSpace() == ColorSpace::YCoCg && channel != 0) continue;
+      for (int q = 0; q < p; ++q)
+        constrain(group, coefficients + std::size_t(q) * coefficientsPerProbe_ + basis_.coefficientOffset(channel));
+    }
+  for (int q = 0; q < p; ++q) constrain(groups_[0], visibility + std::size_t(q) * visibilityPerProbe_);
+}
+
 void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, float* visibility, RayCounts* counts,
                       std::vector<ProbeSamples>* samples, RoundTally* tally) const {
   const int p = int(tasks.size());
-  const int rays = settings_.rays;
-  const ColorSpace space = basis_.colorSpace();
-  const ConvergenceSettings& convergence = settings_.convergence;
-  const bool adaptive = convergence.adaptive();
+  const bool adaptive = settings_.convergence.adaptive();
   if (samples) samples->assign(p, {});
-
-  // Probes in order of rotation, so that each rotation's columns are one block: per rotation,
-  // channel 0 of its probes, then channel 1, channel 2, visibility. (A fixed lattice only.)
-  std::vector<int> order(p);
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return tasks[a].rotation < tasks[b].rotation; });
-
+  const RotationBlocks rotations(tasks);
   // Kept from brick to brick on each thread: a brick's samples are megabytes.
   thread_local ScratchBuffer<float> sampleStore;
-  const int columnRays = adaptive ? 0 : rays;
-  Eigen::Map<Eigen::MatrixXf> columns(sampleStore.reserve(std::size_t(columnRays) * 4 * std::size_t(p)), columnRays,
-                                      4 * p);
+  const int columnRays = adaptive ? 0 : settings_.rays;
+  SampleColumns columns(sampleStore.reserve(std::size_t(columnRays) * 4 * std::size_t(p)), columnRays, 4 * p);
   const bool punctualAtProbe = settings_.transport.directPunctual && !punctual_.empty();
-  // Arrivals, per probe and channel in the colour space: SH coefficients of the punctual lights
-  // (to their own order) and of the direct-view samples (to the lattice's).
-  struct ArrivalHarmonics {
-    explicit ArrivalHarmonics(const SphericalHarmonics& h) : harmonics(&h) {}
-    const SphericalHarmonics* harmonics;
-    Eigen::MatrixXd sh;  // count × 3p
-    std::atomic<bool> any{false};
-  };
-  ArrivalHarmonics punctualSh(punctual_.harmonics()), directSh(directHarmonics_);
-  if (punctualAtProbe) punctualSh.sh.setZero(punctual_.shCount(), 3 * p);
-  if (!directView_.empty()) directSh.sh.setZero(directHarmonics_.count(), 3 * p);
+  ArrivalHarmonics punctualSh(punctual_.harmonics(), punctualAtProbe ? p : 0);
+  ArrivalHarmonics directSh(directHarmonics_, directView_.empty() ? 0 : p);
   // Adaptive convergence: the lattices' SH coefficients per probe, of the three channels and of
   // sky visibility (count × 4p, channel-major like directSh).
   Eigen::MatrixXd latticeSh;
   if (adaptive) latticeSh.setZero(directHarmonics_.count(), 4 * p);
-  auto addArrivals = [&](ArrivalHarmonics& set, const std::vector<PunctualAtProbe::Arrival>& arrivals, int taskIndex) {
-    if (arrivals.empty()) return;
-    set.any = true;
-    const int count = set.harmonics->count();
-    thread_local std::vector<double> sh;
-    sh.assign(3 * std::size_t(count), 0.0);
-    PunctualAtProbe::addHarmonics(*set.harmonics, arrivals, sh.data());
-    for (int i = 0; i < count; ++i) {
-      const Eigen::Vector3d rgb(sh[i], sh[count + i], sh[2 * count + i]);
-      const Eigen::Vector3d value = toColorSpace(space, rgb.cast<float>()).cast<double>();
-      for (int c = 0; c < 3; ++c) set.sh(i, c * p + taskIndex) = value[c];
-    }
-  };
-
-  struct Block {
-    int rotation, first, count;
-  };
-  std::vector<Block> blocks;
-  std::vector<int> blockOf(p);  // of each probe in rotation order
-  for (int s = 0; s < p; ++s) {
-    const int rotation = tasks[order[s]].rotation;
-    if (blocks.empty() || blocks.back().rotation != rotation) blocks.push_back({rotation, s, 0});
-    ++blocks.back().count;
-    blockOf[s] = int(blocks.size()) - 1;
-  }
-
-  // Traces the probe's fixed lattice into its columns, with its direct-view samples.
-  auto traceLattice = [&](int s, const ProbeTask& task, std::vector<PunctualAtProbe::Arrival>* direct,
-                          RayCounts* rangeCounts, ProbeSamples* probeSamples) {
-    thread_local std::vector<Eigen::Vector3f> radiance;
-    thread_local std::vector<float> sky;
-    radiance.resize(rays);
-    sky.resize(rays);
-    const Block& block = blocks[blockOf[s]];
-    const std::vector<Eigen::Vector3f>& dirs = directions_[block.rotation];
-    const int within = s - block.first;
-    const ProbeView view = directView_.at(task.position, rays);
-    integrator_.trace(task.position, task.id, dirs.data(), rays, radiance.data(), sky.data(), rangeCounts, &view);
-    const int base = 4 * block.first;
-    for (int r = 0; r < rays; ++r) {
-      const Eigen::Vector3f value = toColorSpace(space, radiance[r]);
-      for (int c = 0; c < 3; ++c) columns(r, base + c * block.count + within) = value[c];
-      columns(r, base + 3 * block.count + within) = sky[r];
-    }
-    if (!directView_.empty()) directView_.sample(view, task.id, direct, rangeCounts);
-    if (probeSamples) {
-      probeSamples->directions = dirs;
-      probeSamples->weights = weights_;
-      probeSamples->radiance = radiance;
-      probeSamples->visibility = sky;
-    }
-  };
 
   // A probe's samples depend on nothing but the probe, so they are traced a few probes per task:
   // a volume of a few bricks keeps every thread busy to the end, where whole bricks would leave
@@ -332,21 +412,20 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
       RayCounts rangeCounts;
       RoundTally rangeTally;
       for (int s = range.begin(); s < range.end(); ++s) {
-        const int taskIndex = order[s];
+        const int taskIndex = rotations.order[s];
         const ProbeTask& task = tasks[taskIndex];
         ProbeSamples* probeSamples = samples ? &(*samples)[taskIndex] : nullptr;
         std::vector<PunctualAtProbe::Arrival> lights, direct;
         if (punctualAtProbe) lights = punctual_.visibleLights(task.position, &rangeCounts);
         if (adaptive) {
-          const Rounds rounds =
-              traceRounds(task, lights, &direct, latticeSh, taskIndex, p, &rangeCounts, probeSamples);
+          const Rounds rounds = traceRounds(task, lights, &direct, latticeSh, taskIndex, p, &rangeCounts, probeSamples);
           rangeTally.add(rounds.rays, !rounds.converged);
         } else {
-          traceLattice(s, task, &direct, &rangeCounts, probeSamples);
-          rangeTally.add(rays, false);
+          traceLattice(task, rotations, s, columns, &direct, &rangeCounts, probeSamples);
+          rangeTally.add(settings_.rays, false);
         }
-        addArrivals(punctualSh, lights, taskIndex);
-        addArrivals(directSh, direct, taskIndex);
+        punctualSh.add(lights, taskIndex, basis_.colorSpace());
+        directSh.add(direct, taskIndex, basis_.colorSpace());
         if (probeSamples) {
           probeSamples->punctual = std::move(lights);
           probeSamples->direct = std::move(direct);
@@ -359,87 +438,13 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
   });
 
   const auto projectionStart = std::chrono::steady_clock::now();
-  if (adaptive) {
-    // The lattices' SH means → irradiance coefficients, through the operator the direct-view
-    // samples take.
-    std::fill_n(coefficients, std::size_t(p) * coefficientsPerProbe_, 0.0f);
-    latticeSh.middleCols(3 * p, p) /= M_PI;
-    for (const ChannelGroup& group : groups_) {
-      const Eigen::MatrixXd result =
-          group.fromDirectSh * latticeSh.middleCols(group.firstChannel * p, group.channelCount * p);
-      for (int c = 0; c < group.channelCount; ++c) {
-        const int offset = basis_.coefficientOffset(group.firstChannel + c);
-        for (int q = 0; q < p; ++q) {
-          float* out = coefficients + std::size_t(q) * coefficientsPerProbe_ + offset;
-          for (int f = 0; f < group.functions; ++f) out[f] = float(result(f, c * p + q));
-        }
-      }
-    }
-    const Eigen::MatrixXd seen = groups_[0].fromDirectSh * latticeSh.middleCols(3 * p, p);
-    for (int q = 0; q < p; ++q)
-      for (int f = 0; f < visibilityPerProbe_; ++f)
-        visibility[std::size_t(q) * visibilityPerProbe_ + f] = float(seen(f, q));
-  } else {
-    // Each coefficient is a dot product of an operator row with a probe's samples, written
-    // straight to the output: the brick's operator-times-samples product, coefficient by
-    // coefficient. Eigen's general product cost two and a half times as much here, most of it
-    // repacking these short, wide sample blocks on every call.
-    auto project = [&](const auto& fromSamples, int column, int functions, float scale, float* out) {
-      const auto samples = columns.col(column);
-      for (int f = 0; f < functions; ++f) out[f] = fromSamples.row(f).dot(samples) * scale;
-    };
-    for (const Block& block : blocks) {
-      const int base = 4 * block.first;
-      for (const ChannelGroup& group : groups_) {
-        const auto& fromSamples = group.fromSamples[block.rotation];
-        for (int c = 0; c < group.channelCount; ++c) {
-          const int channel = group.firstChannel + c;
-          const int offset = basis_.coefficientOffset(channel);
-          for (int within = 0; within < block.count; ++within)
-            project(fromSamples, base + channel * block.count + within, group.functions, 1.0f,
-                    coefficients + std::size_t(order[block.first + within]) * coefficientsPerProbe_ + offset);
-        }
-      }
-      for (int within = 0; within < block.count; ++within)
-        project(groups_[0].fromSamples[block.rotation], base + 3 * block.count + within, visibilityPerProbe_,
-                float(1.0 / M_PI), visibility + std::size_t(order[block.first + within]) * visibilityPerProbe_);
-    }
-  }
-
-  for (const auto& [set, fromSh] : {std::pair{&punctualSh, &ChannelGroup::fromPunctualSh},
-                                     std::pair{&directSh, &ChannelGroup::fromDirectSh}}) {
-    if (!set->any) continue;
-    for (const ChannelGroup& group : groups_) {
-      const Eigen::MatrixXd result =
-          group.*fromSh * set->sh.middleCols(group.firstChannel * p, group.channelCount * p);
-      for (int c = 0; c < group.channelCount; ++c) {
-        const int offset = basis_.coefficientOffset(group.firstChannel + c);
-        for (int q = 0; q < p; ++q) {
-          float* out = coefficients + std::size_t(q) * coefficientsPerProbe_ + offset;
-          for (int f = 0; f < group.functions; ++f) out[f] += float(result(f, c * p + q));
-        }
-      }
-    }
-  }
-
-  if (settings_.projection.nonNegative) {
-    // The linear coefficients carry the moments m = G·c; re-solve them with c ≥ 0. Only
-    // quantities that cannot be negative are constrained: RGB channels, luminance Y and sky
-    // visibility, not the signed chroma Co and Cg.
-    auto constrain = [](const ChannelGroup& group, float* out) {
-      const Eigen::VectorXd linear = Eigen::Map<Eigen::VectorXf>(out, group.functions).cast<double>();
-      const Eigen::VectorXd constrained = nonNegativeProjection(group.gram, group.gram * linear);
-      for (int f = 0; f < group.functions; ++f) out[f] = float(constrained[f]);
-    };
-    for (const ChannelGroup& group : groups_)
-      for (int c = 0; c < group.channelCount; ++c) {
-        const int channel = group.firstChannel + c;
-        if (space == ColorSpace::YCoCg && channel != 0) continue;
-        for (int q = 0; q < p; ++q)
-          constrain(group, coefficients + std::size_t(q) * coefficientsPerProbe_ + basis_.coefficientOffset(channel));
-      }
-    for (int q = 0; q < p; ++q) constrain(groups_[0], visibility + std::size_t(q) * visibilityPerProbe_);
-  }
+  if (adaptive)
+    projectLatticeSh(latticeSh, p, coefficients, visibility);
+  else
+    projectLattice(columns, rotations, coefficients, visibility);
+  if (punctualSh.any) projectSh(&ChannelGroup::fromPunctualSh, punctualSh.sh, p, coefficients, true);
+  if (directSh.any) projectSh(&ChannelGroup::fromDirectSh, directSh.sh, p, coefficients, true);
+  if (settings_.projection.nonNegative) constrainNonNegative(p, coefficients, visibility);
   projectionNanoseconds_ += std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() -
                                                                                  projectionStart)
                                 .count();

@@ -5,14 +5,14 @@
 #include <memory>
 #include <vector>
 
-#include "bake/Basis.h"
 #include "bake/DirectView.h"
-#include "bake/DirectionSet.h"
-#include "bake/GramOperators.h"
 #include "bake/PathIntegrator.h"
 #include "bake/ProbeConvergence.h"
 #include "bake/PunctualAtProbe.h"
 #include "bake/Transport.h"
+#include "basis/Basis.h"
+#include "basis/DirectionSet.h"
+#include "basis/GramOperators.h"
 #include "scene/RayTracer.h"
 #include "scene/Scene.h"
 
@@ -108,6 +108,10 @@ class ProbeBaker {
 
  private:
   struct ChannelGroup;
+  struct ArrivalHarmonics;
+  struct RotationBlocks;
+  // A fixed lattice's samples, per brick: rays × 4p (RotationBlocks says which column is whose).
+  using SampleColumns = Eigen::Map<Eigen::MatrixXf>;
   struct Rounds {
     std::int64_t rays;
     bool converged;
@@ -119,6 +123,18 @@ class ProbeBaker {
   Rounds traceRounds(const ProbeTask& task, const std::vector<PunctualAtProbe::Arrival>& lights,
                      std::vector<PunctualAtProbe::Arrival>* direct, Eigen::MatrixXd& latticeSh, int taskIndex,
                      int batchSize, RayCounts* counts, ProbeSamples* samples) const;
+  // The probe's fixed lattice, traced into its columns, with its direct-view samples.
+  void traceLattice(const ProbeTask& task, const RotationBlocks& rotations, int s, SampleColumns& columns,
+                    std::vector<PunctualAtProbe::Arrival>* direct, RayCounts* counts, ProbeSamples* samples) const;
+  void projectLattice(const SampleColumns& columns, const RotationBlocks& rotations, float* coefficients,
+                      float* visibility) const;
+  void projectLatticeSh(Eigen::MatrixXd& latticeSh, int p, float* coefficients, float* visibility) const;
+  // Irradiance coefficients of SH arrivals (count × 3p) through each group's operator `fromSh`,
+  // added to or written over `coefficients`.
+  void projectSh(const Eigen::MatrixXd ChannelGroup::*fromSh, const Eigen::MatrixXd& sh, int p, float* coefficients,
+                 bool accumulate) const;
+  void constrainNonNegative(int p, float* coefficients, float* visibility) const;
+
   const Basis& basis_;
   BakeSettings settings_;
   PathIntegrator integrator_;

@@ -5,18 +5,9 @@
 #include <stdexcept>
 #include <tuple>
 
-#include "bake/DirectionSet.h"
+#include "basis/DirectionSet.h"
 
 namespace baker {
-
-const char* probeStateName(ProbeState state) {
-  switch (state) {
-    case ProbeState::Valid: return "valid";
-    case ProbeState::Relocated: return "relocated";
-    case ProbeState::Invalid: return "invalid";
-  }
-  return "unknown";
-}
 namespace {
 
 // Re-tests per probe: the nearest back faces are the likely ways out, and a probe deep inside

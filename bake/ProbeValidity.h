@@ -3,8 +3,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "bake/ProbeGrid.h"
 #include "scene/RayTracer.h"
+#include "volume/ProbeGrid.h"
+#include "volume/ProbeState.h"
 
 namespace baker {
 
@@ -26,11 +27,6 @@ namespace baker {
 // nothing else lies within that margin, and is accepted if the probe passes the test there.
 // Only the nearest few candidates are tried, which bounds the cost. A probe with no acceptable
 // candidate is Invalid, and fillInvalidProbes gives it the mean of its valid neighbours.
-enum class ProbeState : std::uint8_t { Invalid = 0, Valid = 1, Relocated = 2 };
-
-// "valid", "relocated" or "invalid": the word reports and JSON use.
-const char* probeStateName(ProbeState state);
-
 struct ProbePlacement {
   Eigen::Vector3f offset{0.0f, 0.0f, 0.0f};  // world-space move from the grid position; zero unless Relocated
   ProbeState state = ProbeState::Valid;

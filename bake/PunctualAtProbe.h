@@ -2,8 +2,8 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "bake/SphericalHarmonics.h"
 #include "bake/Transport.h"
+#include "basis/SphericalHarmonics.h"
 #include "scene/RayTracer.h"
 #include "scene/Scene.h"
 

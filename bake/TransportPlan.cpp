@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "bake/BakeRequest.h"
 #include "common/Error.h"
 
 namespace baker {
@@ -20,32 +21,43 @@ bool simulated(std::vector<PlannedEffect>& plan, const std::string& name) {
   return e && e->simulated;
 }
 
+std::string effectKey(std::string name) {
+  std::replace(name.begin(), name.end(), '-', '_');
+  return name;
+}
+
 }  // namespace
 
-void turnOffEffects(std::vector<PlannedEffect>& plan, const std::vector<std::string>& names) {
-  for (std::string name : names) {
-    const std::string given = name;
-    std::replace(name.begin(), name.end(), '-', '_');
-    PlannedEffect* e = find(plan, name);
-    if (!e) {
-      std::vector<std::string> keys;
-      for (const PlannedEffect& p : plan) {
-        keys.push_back(p.name);
-        std::replace(keys.back().begin(), keys.back().end(), '_', '-');
+void requireKnownEffects(const std::vector<std::string>& names) {
+  const std::vector<std::string>& keys = effectKeys();
+  for (const std::string& name : names)
+    if (std::find(keys.begin(), keys.end(), effectKey(name)) == keys.end()) {
+      std::vector<std::string> flags;
+      for (std::string key : keys) {
+        std::replace(key.begin(), key.end(), '_', '-');
+        flags.push_back(key);
       }
-      throw InputError(fmt::format("--no {}: not an effect; effects are {}", given, fmt::join(keys, ", ")));
+      throw SettingError("turned_off", fmt::format("{}: not an effect; effects are {}", name, fmt::join(flags, ", ")));
     }
-    if (e->simulated) e->reason = fmt::format("turned off by --no {} ({})", given, e->reason);
+}
+
+void turnOffEffects(std::vector<PlannedEffect>& plan, const std::vector<std::string>& names) {
+  requireKnownEffects(names);
+  for (const std::string& name : names) {
+    PlannedEffect* e = find(plan, effectKey(name));
+    if (!e) continue;
+    if (e->simulated) e->reason = fmt::format("turned off on request ({})", e->reason);
     e->simulated = false;
   }
 }
 
 TransportSettings transportSettings(std::vector<PlannedEffect>& plan, int bounces, std::uint64_t seed) {
-  if (bounces < 0 || bounces > 64) throw InputError(fmt::format("--bounces must be in 0..64, got {}", bounces));
+  if (bounces < 0 || bounces > kMaxBounces)
+    throw SettingError("bounces", fmt::format("must be in 0..{}, got {}", kMaxBounces, bounces));
   PlannedEffect* reflections = find(plan, "bounces");
   if (reflections && reflections->simulated && bounces == 0) {
     reflections->simulated = false;
-    reflections->reason = "--bounces 0: probes see emission and sky only";
+    reflections->reason = "0 bounces asked for: probes see emission and sky only";
   } else if (reflections && reflections->simulated && !simulated(plan, "punctual_lights") &&
              !simulated(plan, "emissive_lights") && !simulated(plan, "environment")) {
     reflections->simulated = false;

@@ -9,6 +9,9 @@ namespace baker {
 
 // Turns off the effects the user named (`--no EFFECT`, with '-' or '_' in the key), saying so
 // in their reason. Throws InputError for a name that is not an effect, listing the keys.
+// SettingError "turned_off" for a name that is not an effect's key ('-' or '_' alike), listing the keys.
+void requireKnownEffects(const std::vector<std::string>& names);
+
 void turnOffEffects(std::vector<PlannedEffect>& plan, const std::vector<std::string>& names);
 
 // The simulation the plan describes, with at most `bounces` diffuse reflections (none when the

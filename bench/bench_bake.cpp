@@ -32,20 +32,15 @@
 #include <string>
 #include <vector>
 
-#include "bake/Baker.h"
-#include "bake/BasisRegistry.h"
+#include "bake/BakeJob.h"
 #include "bake/PathIntegrator.h"
-#include "bake/ProbeBaker.h"
 #include "cli/CommandLine.h"
 #include "common/Error.h"
 #include "common/Timing.h"
 #include "formats/VolumeWriter.h"
 #include "images/ImageFiles.h"
-#include "scene/GltfLoader.h"
+#include "scene/RayRecorder.h"
 #include "scene/RayTracer.h"
-#include "scene/SceneCensus.h"
-#include "scene/SceneEffects.h"
-#include "bake/TransportPlan.h"
 
 namespace baker {
 namespace {
@@ -64,7 +59,7 @@ struct Options {
 // rays instead streams it from memory, which on a shared host slowed the replay by up to 2.5×
 // while Embree's time inside the bake held still. So the log is copied, untimed, into a small
 // buffer a few thousand rays at a time, and only the Embree calls on it are timed.
-double replaySeconds(const RayTracer& tracer, const RayTracer::RayLog& log) {
+double replaySeconds(const RayTracer& tracer, const RayLog& log) {
   constexpr std::size_t kChunkRays = 4096;
   std::vector<Ray> chunk;
   std::vector<Hit> hits(8);
@@ -127,18 +122,21 @@ nlohmann::json run(const Options& o) {
   // textured scene times reading it, as before they moved into a module, and not 0.13 s of
   // dynamic linking that would also inflate the bake the stage shares are taken of.
   requireImageModule();
+  BakeRequest request;
+  request.scenePath = o.scene;
+  request.basis = o.basis;
+  request.quality.clear();
+  request.rays = o.rays;
+  if (o.spacing > 0.0) request.spacing = o.spacing;
+  RayRecorder observer;
+  const BakeJob job(request, &observer);
+  const Scene& scene = job.scene();
+  const RayTracer& tracer = job.tracer();
+  const Basis* basis = &job.basis();
+  const ProbeGrid& grid = job.grid();
+  const BakeSettings& settings = job.settings();
+  const double loadSeconds = job.loadSeconds(), bvhSeconds = job.bvhSeconds();
   auto stage = std::chrono::steady_clock::now();
-  const Scene scene = loadGltf(o.scene);
-  const double loadSeconds = secondsSince(stage);
-  stage = std::chrono::steady_clock::now();
-  RayTracer tracer(scene);
-  const double bvhSeconds = secondsSince(stage);
-  std::vector<PlannedEffect> plan = planEffects(scene, takeCensus(scene));
-  BakeSettings settings;
-  settings.rays = o.rays;
-  settings.transport = transportSettings(plan, 3, 0);
-  const auto basis = makeBasis(o.basis);
-  const ProbeGrid grid = makeProbeGrid(scene.bounds, o.spacing, std::int64_t(1) << 27);
 
   // 1, 2 and the thread scaling of 3: the bake recorded once, then rounds of a one-thread bake,
   // writing its volume, Embree alone replaying its rays, and a two-thread bake. Each is timed at
@@ -154,12 +152,12 @@ nlohmann::json run(const Options& o) {
   const std::string path = (std::filesystem::temp_directory_path() / "bench_bake.vdb").string();
   Volume volume;
   // (TBB applies the smallest parallelism limit alive, so each limit lives only for its bake.)
-  RayTracer::RayLog log;
+  RayLog log;
   {
     tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
-    tracer.record(&log);
+    observer.record(&log);
     bakeVolume(scene, tracer, *basis, grid, settings, nullptr);  // warms caches, records the rays
-    tracer.record(nullptr);
+    observer.record(nullptr);
   }
   for (int round = 0; round < kRounds; ++round) {
     BakeStats s, s2;
@@ -185,11 +183,11 @@ nlohmann::json run(const Options& o) {
   double embreeInsideBake = 0.0, embreeReplaying = 0.0;
   {
     tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
-    tracer.timeEmbreeCalls(&embreeInsideBake);
+    observer.timeEmbreeCalls(&embreeInsideBake);
     bakeVolume(scene, tracer, *basis, grid, settings, nullptr);
-    tracer.timeEmbreeCalls(&embreeReplaying);
+    observer.timeEmbreeCalls(&embreeReplaying);
     replaySeconds(tracer, log);
-    tracer.timeEmbreeCalls(nullptr);
+    observer.timeEmbreeCalls(nullptr);
   }
   constexpr double kThroughputTarget = 0.85;
   const double traced = double(stats.rays.total());
@@ -229,7 +227,7 @@ nlohmann::json run(const Options& o) {
   nlohmann::json perProbe = nlohmann::json::array();
   for (double factor : {1.0, 2.0, 4.0}) {
     tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
-    const ProbeGrid finer = makeProbeGrid(scene.bounds, grid.spacing / std::cbrt(factor), std::int64_t(1) << 27);
+    const ProbeGrid finer = makeProbeGrid(scene.bounds, grid.spacing / std::cbrt(factor), kMaxBakeProbes);
     BakeStats s;
     const Volume finerVolume = bakeVolume(scene, tracer, *basis, finer, settings, &s);
     // Timed once, not at a best round: how the write's share falls as its fixed cost (every

@@ -10,8 +10,8 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
-#include "bake/BasisRegistry.h"
-#include "bake/GramOperators.h"
+#include "basis/BasisRegistry.h"
+#include "basis/GramOperators.h"
 #include "cli/CommandLine.h"
 
 using namespace baker;
@@ -27,6 +27,7 @@ class DenseView : public Basis {
  public:
   explicit DenseView(const Basis& basis) : basis_(basis) {}
   std::string name() const override { return basis_.name(); }
+  std::string family() const override { return basis_.family(); }
   ColorSpace colorSpace() const override { return basis_.colorSpace(); }
   const SphericalFunctions& functions(int c) const override { return basis_.functions(c); }
   int coefficientsPerLookup() const override { return basis_.totalCoefficients(); }

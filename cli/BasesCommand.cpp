@@ -5,8 +5,8 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "bake/BasisRegistry.h"
-#include "bake/GramOperators.h"
+#include "basis/BasisRegistry.h"
+#include "basis/GramOperators.h"
 #include "cli/CommandLine.h"
 
 namespace baker {

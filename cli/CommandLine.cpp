@@ -2,12 +2,28 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <iostream>
 #include <sstream>
 
 #include "common/Error.h"
 
 namespace baker {
+
+std::string flagOf(const std::string& setting) {
+  if (setting == "turned_off") return "--no";
+  if (setting == "environment_map") return "--env";
+  std::string flag = "--" + setting;
+  std::replace(flag.begin(), flag.end(), '_', '-');
+  return flag;
+}
+
+std::string commandLineMessage(const InputError& error) {
+  const auto* setting = dynamic_cast<const SettingError*>(&error);
+  if (!setting) return error.what();
+  const std::string& problem = setting->problem();
+  return flagOf(setting->setting()) + (problem.rfind(":", 0) == 0 ? "" : " ") + problem;
+}
 
 int runGuarded(const std::string& command, CLI::App& app, int argc, char** argv, const std::function<int()>& body) {
   try {
@@ -25,7 +41,7 @@ int runGuarded(const std::string& command, CLI::App& app, int argc, char** argv,
   try {
     return body();
   } catch (const InputError& e) {
-    std::cerr << fmt::format("{}: error: {}\n", command, e.what());
+    std::cerr << fmt::format("{}: error: {}\n", command, commandLineMessage(e));
     return 2;
   } catch (const NumericalError& e) {
     std::cerr << fmt::format("{}: error: {}\n", command, e.what());

@@ -6,11 +6,18 @@
 #include <functional>
 #include <string>
 
+#include "common/Error.h"
+
 namespace baker {
 
 // Runs one command's body and turns every failure into one line on stderr and an exit
 // code: 2 for bad input (a file, a field, a flag), 1 for anything else. `body` parses and runs.
 int runGuarded(const std::string& command, CLI::App& app, int argc, char** argv, const std::function<int()>& body);
+
+// The flag that sets a library setting (SettingError::setting): "sg_sharpness" → "--sg-sharpness".
+std::string flagOf(const std::string& setting);
+// The error as the command line says it: a setting's problem after its flag.
+std::string commandLineMessage(const InputError& error);
 
 // "x,y,z" → three finite numbers; InputError naming `flag` otherwise.
 Eigen::Vector3d parseTriple(const std::string& flag, const std::string& text);

@@ -6,10 +6,10 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/CommandLine.h"
+#include "cli/SceneFlags.h"
 #include "scene/GltfLoader.h"
 #include "scene/SceneCensus.h"
 #include "scene/SceneEffects.h"
-#include "scene/SceneOptions.h"
 
 namespace baker {
 namespace {
@@ -114,7 +114,7 @@ int runInfoCommand(int argc, char** argv) {
   app.add_option("scene", scenePath, "glTF 2.0 scene (.gltf or .glb)")->required();
   app.add_flag("--json", json, "print the description as JSON on stdout");
   SceneOptions options;
-  addSceneOptions(app, options);
+  addSceneFlags(app, options);
   return runGuarded("baker info", app, argc, argv, [&]() {
     const Scene scene = loadGltf(scenePath, options);
     const SceneCensus census = takeCensus(scene);

@@ -10,12 +10,39 @@
 #include "cli/CommandLine.h"
 #include "common/Error.h"
 #include "formats/AtomicFile.h"
-#include "formats/PreviewImage.h"
-#include "formats/ReferencePanoramas.h"
-#include "formats/RgbImage.h"
 #include "formats/VolumeReader.h"
+#include "images/RgbImage.h"
+#include "validate/PreviewImage.h"
+#include "validate/ReferencePanoramas.h"
 
 namespace baker {
+
+namespace {
+
+nlohmann::json previewJson(const std::string& out, const Preview& preview, const PreviewOptions& options,
+                           const std::optional<ReferenceProbe>& reference, double sliceY, double sliceZ) {
+  nlohmann::json j = {{"out", out},
+                      {"width", preview.image.width},
+                      {"height", preview.image.height},
+                      {"cell_pixels", preview.cellPixels},
+                      {"xz_slice", {{"j", preview.xzSliceRow}, {"y", sliceY}}},
+                      {"xy_slice", {{"k", preview.xySliceLayer}, {"z", sliceZ}}},
+                      {"exposure", preview.exposure},
+                      {"median_irradiance", preview.medianIrradiance},
+                      {"colour_bar", {0.0, preview.colourBarEnd}},
+                      {"max_irradiance", preview.maxIrradiance},
+                      {"invalid_probes_shown", preview.invalidProbesShown},
+                      {"relocated_probes_shown", preview.relocatedProbesShown}};
+  if (options.probe) j["probe"] = {options.probe->x(), options.probe->y(), options.probe->z()};
+  if (reference)
+    j["reference_probe"] = {{"index", reference->index},
+                            {"file", reference->file},
+                            {"position", {reference->position.x(), reference->position.y(), reference->position.z()}},
+                            {"distance", (reference->position - *options.probe).norm()}};
+  return j;
+}
+
+}  // namespace
 
 int runPreviewCommand(int argc, char** argv) {
   CLI::App app{"Draw a volume as a PNG: its middle slices coloured by irradiance and sky visibility."};
@@ -62,25 +89,7 @@ int runPreviewCommand(int argc, char** argv) {
     const double sliceY = g.origin.y() + g.spacing * preview.xzSliceRow;
     const double sliceZ = g.origin.z() + g.spacing * preview.xySliceLayer;
     if (json) {
-      nlohmann::json j = {{"out", out},
-                          {"width", preview.image.width},
-                          {"height", preview.image.height},
-                          {"cell_pixels", preview.cellPixels},
-                          {"xz_slice", {{"j", preview.xzSliceRow}, {"y", sliceY}}},
-                          {"xy_slice", {{"k", preview.xySliceLayer}, {"z", sliceZ}}},
-                          {"exposure", preview.exposure},
-                          {"median_irradiance", preview.medianIrradiance},
-                          {"colour_bar", {0.0, preview.colourBarEnd}},
-                          {"max_irradiance", preview.maxIrradiance},
-                          {"invalid_probes_shown", preview.invalidProbesShown},
-                          {"relocated_probes_shown", preview.relocatedProbesShown}};
-      if (options.probe) j["probe"] = {options.probe->x(), options.probe->y(), options.probe->z()};
-      if (reference)
-        j["reference_probe"] = {{"index", reference->index},
-                                {"file", reference->file},
-                                {"position", {reference->position.x(), reference->position.y(), reference->position.z()}},
-                                {"distance", (reference->position - *options.probe).norm()}};
-      std::cout << j.dump(2) << "\n";
+      std::cout << previewJson(out, preview, options, reference, sliceY, sliceZ).dump(2) << "\n";
       return 0;
     }
     std::cout << fmt::format("wrote {} ({} x {} pixels, {} per probe)\n", out, preview.image.width, preview.image.height,

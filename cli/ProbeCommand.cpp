@@ -6,12 +6,12 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "bake/ProbeBaker.h"
-#include "bake/ProbeValidity.h"
+#include "bake/BakeJob.h"
 #include "cli/BakeOptions.h"
 #include "cli/CommandLine.h"
 #include "common/Error.h"
 #include "formats/VolumeSampler.h"
+#include "volume/ProbeState.h"
 
 namespace baker {
 namespace {
@@ -25,6 +25,35 @@ Eigen::Vector3f axis(int a) {
 }
 
 nlohmann::json vec(const Eigen::Vector3f& v) { return {v.x(), v.y(), v.z()}; }
+
+nlohmann::json probeJson(const Basis& basis, const BakedProbes& baked, const Eigen::Vector3f& position, std::size_t i) {
+  const float* c = baked.probe(i);
+  const float* v = baked.probeVisibility(i);
+  const ProbeSamples& samples = baked.samples[i];
+  const ProbePlacement& placement = baked.placements[i];
+  nlohmann::json fromBasis, fromSamples, visibilityByNormal;
+  for (int a = 0; a < 6; ++a) {
+    const Eigen::Vector3f n = axis(a);
+    fromBasis[kAxisNames[a]] = vec(basis.reconstruct(c, n.cast<double>()));
+    fromSamples[kAxisNames[a]] = vec(sampledIrradiance(samples, n));
+    visibilityByNormal[kAxisNames[a]] = reconstructVisibility(basis, v, n.cast<double>());
+  }
+  double escaped = 0.0;
+  for (std::size_t r = 0; r < samples.visibility.size(); ++r) escaped += samples.weights[r] * samples.visibility[r];
+  return {{"position", vec(position)},
+          {"baked_position", vec(baked.tasks[i].position)},
+          {"offset", vec(placement.offset)},
+          {"state", probeStateName(placement.state)},
+          {"valid", placement.state != ProbeState::Invalid},
+          {"backface_ratio", placement.backfaceRatio},
+          {"rays", std::int64_t(samples.radiance.size())},
+          {"coefficients", std::vector<float>(c, c + baked.coefficientsPerProbe)},
+          {"visibility_coefficients", std::vector<float>(v, v + baked.visibilityPerProbe)},
+          {"irradiance", fromBasis},
+          {"irradiance_from_samples", fromSamples},
+          {"sky_visibility", escaped / (4.0 * M_PI)},
+          {"sky_visibility_by_normal", visibilityByNormal}};
+}
 
 }  // namespace
 
@@ -40,69 +69,22 @@ int runProbeCommand(int argc, char** argv) {
   return runGuarded("baker probe", app, argc, argv, [&]() {
     std::vector<Eigen::Vector3f> positions;
     for (const std::string& text : at) positions.push_back(parseTriple("--at", text).cast<float>());
-    PreparedBake prepared = prepareBake(app, options, std::cerr);
-    const Basis& basis = *prepared.basis;
-    const ProbeBaker probeBaker(*prepared.scene, *prepared.tracer, basis, prepared.settings, 1);
-
-    RayCounts counts;
-    const ValidityOptions validityOptions;
-    const std::vector<Eigen::Vector3f> testDirections = validityDirections(validityOptions);
-    std::vector<ProbePlacement> placements;
-    std::vector<ProbeTask> tasks;
-    for (std::size_t i = 0; i < positions.size(); ++i) {
-      ProbePlacement placement;
-      if (prepared.settings.transport.probeValidity)
-        placement = placeProbe(*prepared.tracer, positions[i], float(prepared.grid.spacing), testDirections,
-                               validityOptions, &counts.validity);
-      placements.push_back(placement);
-      tasks.push_back({positions[i] + placement.offset, std::uint64_t(i), 0});
-    }
-    std::vector<float> coefficients(tasks.size() * probeBaker.coefficientsPerProbe());
-    std::vector<float> visibility(tasks.size() * probeBaker.visibilityPerProbe());
-    std::vector<ProbeSamples> samples;
-    probeBaker.bake(tasks, coefficients.data(), visibility.data(), &counts, &samples);
-
-    for (float c : coefficients)
-      if (!std::isfinite(c)) throw NumericalError("a probe's coefficients are not finite: the scene's radiance overflows float");
+    const std::unique_ptr<BakeJob> job = prepareBake(app, options, std::cerr);
+    const Basis& basis = job->basis();
+    const BakedProbes baked = job->probesAt(positions);
     nlohmann::json probes = nlohmann::json::array();
-    for (std::size_t i = 0; i < tasks.size(); ++i) {
-      const float* c = coefficients.data() + i * probeBaker.coefficientsPerProbe();
-      const float* v = visibility.data() + i * probeBaker.visibilityPerProbe();
-      nlohmann::json fromBasis, fromSamples, visibilityByNormal;
-      for (int a = 0; a < 6; ++a) {
-        const Eigen::Vector3f n = axis(a);
-        fromBasis[kAxisNames[a]] = vec(basis.reconstruct(c, n.cast<double>()));
-        fromSamples[kAxisNames[a]] = vec(sampledIrradiance(samples[i], n));
-        visibilityByNormal[kAxisNames[a]] = reconstructVisibility(basis, v, n.cast<double>());
-      }
-      double escaped = 0.0;
-      for (std::size_t r = 0; r < samples[i].visibility.size(); ++r)
-        escaped += samples[i].weights[r] * samples[i].visibility[r];
-      probes.push_back({{"position", vec(positions[i])},
-                        {"baked_position", vec(tasks[i].position)},
-                        {"offset", vec(placements[i].offset)},
-                        {"state", probeStateName(placements[i].state)},
-                        {"valid", placements[i].state != ProbeState::Invalid},
-                        {"backface_ratio", placements[i].backfaceRatio},
-                        {"rays", std::int64_t(samples[i].radiance.size())},
-                        {"coefficients", std::vector<float>(c, c + probeBaker.coefficientsPerProbe())},
-                        {"visibility_coefficients", std::vector<float>(v, v + probeBaker.visibilityPerProbe())},
-                        {"irradiance", fromBasis},
-                        {"irradiance_from_samples", fromSamples},
-                        {"sky_visibility", escaped / (4.0 * M_PI)},
-                        {"sky_visibility_by_normal", visibilityByNormal}});
-    }
+    for (std::size_t i = 0; i < positions.size(); ++i) probes.push_back(probeJson(basis, baked, positions[i], i));
 
     if (json) {
-      const nlohmann::json j = {{"scene", options.scenePath},
+      const nlohmann::json j = {{"scene", job->request().scenePath},
                                 {"basis", basis.name()},
-                                {"rays", prepared.settings.rays},
-                                {"quality", qualityName(options, prepared.settings)},
-                                {"target_relative_error", prepared.settings.convergence.targetError},
-                                {"bounces", prepared.settings.transport.bounces},
-                                {"seed", options.seed},
-                                {"plan", planJson(prepared.plan)},
-                                {"ray_counts", rayCountsJson(counts)},
+                                {"rays", job->settings().rays},
+                                {"quality", qualityName(job->request())},
+                                {"target_relative_error", job->settings().convergence.targetError},
+                                {"bounces", job->settings().transport.bounces},
+                                {"seed", job->request().seed},
+                                {"plan", planJson(job->plan())},
+                                {"ray_counts", rayCountsJson(baked.rays)},
                                 {"probes", probes}};
       std::cout << j.dump(2) << "\n";
       return 0;

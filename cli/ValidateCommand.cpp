@@ -8,14 +8,14 @@
 #include <memory>
 
 #include "cli/CommandLine.h"
-#include "cli/ValidationReport.h"
 #include "common/Error.h"
 #include "formats/AtomicFile.h"
-#include "formats/IrradianceError.h"
-#include "formats/ReferenceComparison.h"
-#include "formats/ReferencePanoramas.h"
-#include "formats/VolumeComparison.h"
 #include "formats/VolumeReader.h"
+#include "validate/IrradianceError.h"
+#include "validate/ReferenceComparison.h"
+#include "validate/ReferencePanoramas.h"
+#include "validate/ValidationReport.h"
+#include "validate/VolumeComparison.h"
 
 namespace baker {
 namespace {

@@ -9,7 +9,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "bake/BasisRegistry.h"
+#include "basis/BasisRegistry.h"
 #include "common/Error.h"
 #include "formats/AtomicFile.h"
 #include "formats/VolumeHeader.h"
@@ -119,6 +119,9 @@ void writeExrSlices(const Volume& volume, const Basis& basis, const std::string&
                                                               volume.grid.origin.y(), volume.grid.origin.z())});
   slice.textAttributes.push_back({"baker.spacing", fmt::format("{:.17g}", volume.grid.spacing)});
   slice.textAttributes.push_back({"baker.coefficient_scale", fmt::format("{:.17g}", scale)});
+  // OpenImageIO stamps each EXR with the time it was written (capDate) unless told a time: a
+  // fixed one keeps the same volume the same bytes.
+  slice.textAttributes.push_back({"DateTime", "1970:01:01 00:00:00"});
 
   AtomicDirectory out(directory, replaceableVolumeDirectory);
   const ProbeGrid& g = volume.grid;
@@ -143,10 +146,17 @@ void writeExrSlices(const Volume& volume, const Basis& basis, const std::string&
   out.commit();
 }
 
-Volume readExrSlices(const std::string& path) {
-  std::filesystem::path dir = path;
-  if (dir.filename() == kManifest) dir = dir.parent_path();
-  const std::string manifestPath = (dir / kManifest).string();
+namespace {
+
+// What a manifest says, before any of it is believed.
+struct Manifest {
+  VolumeHeader header;
+  std::vector<std::string> slices, channelNames;
+  double scale = 1.0;
+};
+
+Manifest readManifest(const std::string& path, const std::string& manifestPath) {
+  Manifest manifest;
   std::ifstream in(manifestPath);
   if (!in) throw InputError(fmt::format("{}: no {} (not an EXR slice volume)", path, kManifest));
   nlohmann::json m;
@@ -155,75 +165,90 @@ Volume readExrSlices(const std::string& path) {
   } catch (const nlohmann::json::exception& e) {
     throw InputError(fmt::format("{}: not valid JSON: {}", manifestPath, oneLine(e.what())));
   }
-  VolumeHeader header;
-  std::vector<std::string> slices, channelNames;
-  double scale = 1.0;
   try {
     if (m.at("format") != kFormatName)
       throw InputError(fmt::format("{}: \"format\" is {}, expected \"{}\"", manifestPath, m.at("format").dump(), kFormatName));
-    header.basisName = m.at("basis").get<std::string>();
+    manifest.header.basisName = m.at("basis").get<std::string>();
     const auto dims = m.at("dims").get<std::vector<int>>();
     const auto origin = m.at("origin").get<std::vector<double>>();
     if (dims.size() != 3 || origin.size() != 3)
       throw InputError(fmt::format("{}: \"dims\" and \"origin\" need three numbers each", manifestPath));
-    header.grid.dims = Eigen::Vector3i(dims[0], dims[1], dims[2]);
-    header.grid.origin = Eigen::Vector3d(origin[0], origin[1], origin[2]);
-    header.grid.spacing = m.at("spacing").get<double>();
-    header.coefficientsPerProbe = m.at("coefficients_per_probe").get<int>();
-    header.visibilityPerProbe = m.at("visibility_per_probe").get<int>();
-    header.hasProbeStates = m.at("probe_states").get<bool>();
-    scale = m.at("coefficient_scale").get<double>();
-    slices = m.at("slices").get<std::vector<std::string>>();
-    channelNames = m.at("channels").get<std::vector<std::string>>();
-    for (const auto& [key, value] : m.at("metadata").items()) header.text.push_back({key, value.get<std::string>()});
+    manifest.header.grid.dims = Eigen::Vector3i(dims[0], dims[1], dims[2]);
+    manifest.header.grid.origin = Eigen::Vector3d(origin[0], origin[1], origin[2]);
+    manifest.header.grid.spacing = m.at("spacing").get<double>();
+    manifest.header.coefficientsPerProbe = m.at("coefficients_per_probe").get<int>();
+    manifest.header.visibilityPerProbe = m.at("visibility_per_probe").get<int>();
+    manifest.header.hasProbeStates = m.at("probe_states").get<bool>();
+    manifest.scale = m.at("coefficient_scale").get<double>();
+    manifest.slices = m.at("slices").get<std::vector<std::string>>();
+    manifest.channelNames = m.at("channels").get<std::vector<std::string>>();
+    for (const auto& [key, value] : m.at("metadata").items()) manifest.header.text.push_back({key, value.get<std::string>()});
   } catch (const nlohmann::json::exception& e) {
     throw InputError(fmt::format("{}: {}", manifestPath, oneLine(e.what())));
   }
-  if (!(scale > 0.0) || !std::isfinite(scale))
+  if (!(manifest.scale > 0.0) || !std::isfinite(manifest.scale))
     throw InputError(fmt::format("{}: \"coefficient_scale\" must be a positive number", manifestPath));
-  const ProbeGrid& g = header.grid;
-  if (g.dims.z() < 0 || slices.size() != std::size_t(g.dims.z()))
-    throw InputError(fmt::format("{}: {} slices listed for {} probes along z", manifestPath, slices.size(), g.dims.z()));
+  return manifest;
+}
+
+// Slice k's pixels into the volume's grids, every channel found by name.
+void readSlice(const std::filesystem::path& dir, const Manifest& manifest, int k, const std::string& manifestPath,
+               const std::vector<VolumeGrid>& grids, std::vector<float>& pixels, Volume& volume) {
+  const std::vector<std::string>& slices = manifest.slices;
+  const ProbeGrid& g = manifest.header.grid;
+  const double scale = manifest.scale;
+  const std::string slicePath = (dir / slices[k]).string();
+  const std::unique_ptr<ImageReader> image = openSlice(dir, slices[k], k, g, manifestPath);
+  const ImageHeader& spec = image->header();
+  std::vector<std::pair<int, std::pair<const VolumeGrid*, int>>> sources;  // channel index → grid component
+  for (const VolumeGrid& grid : grids)
+    for (int c = 0; c < grid.components; ++c) {
+      const std::string name = componentName(grid, c);
+      const auto it = std::find(spec.channelNames.begin(), spec.channelNames.end(), name);
+      if (it == spec.channelNames.end()) throw InputError(fmt::format("{}: channel '{}' is missing", slicePath, name));
+      sources.push_back({int(it - spec.channelNames.begin()), {&grid, c}});
+    }
+  pixels.resize(std::size_t(spec.width) * spec.height * spec.channels);
+  if (!image->readFloats(spec.channels, pixels.data()))
+    throw InputError(fmt::format("{}: cannot read the pixels: {}", slicePath, image->error()));
+  for (int j = 0; j < g.dims.y(); ++j)
+    for (int i = 0; i < g.dims.x(); ++i) {
+      const float* px = pixels.data() + (std::size_t(j) * g.dims.x() + i) * spec.channels;
+      const std::int64_t p = g.linearIndex(i, j, k);
+      for (const auto& [channel, target] : sources) {
+        const auto& [grid, c] = target;
+        float value = px[channel];
+        if (grid->kind == VolumeGrid::Kind::ProbeState) {
+          if (!(value == 0.0f || value == 1.0f || value == 2.0f))
+            throw InputError(fmt::format("{}: probe_state at ({}, {}) is {}; states are 0, 1 or 2", slicePath, i, j, value));
+        } else if (scaled(*grid)) {
+          value = float(double(value) * scale);
+        }
+        setGridValue(volume, *grid, c, p, value);
+      }
+    }
+}
+
+}  // namespace
+
+Volume readExrSlices(const std::string& path) {
+  std::filesystem::path dir = path;
+  if (dir.filename() == kManifest) dir = dir.parent_path();
+  const std::string manifestPath = (dir / kManifest).string();
+  const Manifest manifest = readManifest(path, manifestPath);
+  const ProbeGrid& g = manifest.header.grid;
+  if (g.dims.z() < 0 || manifest.slices.size() != std::size_t(g.dims.z()))
+    throw InputError(fmt::format("{}: {} slices listed for {} probes along z", manifestPath, manifest.slices.size(),
+                                 g.dims.z()));
   // Every slice is checked against the manifest before anything is allocated for it: the
   // manifest's sizes are only believed once the images agree with them.
-  for (int k = 0; k < g.dims.z(); ++k) openSlice(dir, slices[k], k, g, manifestPath);
-  Volume volume = header.emptyVolume(manifestPath);
+  for (int k = 0; k < g.dims.z(); ++k) openSlice(dir, manifest.slices[k], k, g, manifestPath);
+  Volume volume = manifest.header.emptyVolume(manifestPath);
 
   const std::unique_ptr<Basis> basis = makeBasis(volume.basisName);
-  const std::vector<VolumeGrid> grids = volumeGrids(*basis, volume.visibilityPerProbe, header.hasProbeStates);
+  const std::vector<VolumeGrid> grids = volumeGrids(*basis, volume.visibilityPerProbe, manifest.header.hasProbeStates);
   std::vector<float> pixels;
-  for (int k = 0; k < g.dims.z(); ++k) {
-    const std::string slicePath = (dir / slices[k]).string();
-    const std::unique_ptr<ImageReader> image = openSlice(dir, slices[k], k, g, manifestPath);
-    const ImageHeader& spec = image->header();
-    std::vector<std::pair<int, std::pair<const VolumeGrid*, int>>> sources;  // channel index → grid component
-    for (const VolumeGrid& grid : grids)
-      for (int c = 0; c < grid.components; ++c) {
-        const std::string name = componentName(grid, c);
-        const auto it = std::find(spec.channelNames.begin(), spec.channelNames.end(), name);
-        if (it == spec.channelNames.end()) throw InputError(fmt::format("{}: channel '{}' is missing", slicePath, name));
-        sources.push_back({int(it - spec.channelNames.begin()), {&grid, c}});
-      }
-    pixels.resize(std::size_t(spec.width) * spec.height * spec.channels);
-    if (!image->readFloats(spec.channels, pixels.data()))
-      throw InputError(fmt::format("{}: cannot read the pixels: {}", slicePath, image->error()));
-    for (int j = 0; j < g.dims.y(); ++j)
-      for (int i = 0; i < g.dims.x(); ++i) {
-        const float* px = pixels.data() + (std::size_t(j) * g.dims.x() + i) * spec.channels;
-        const std::int64_t p = g.linearIndex(i, j, k);
-        for (const auto& [channel, target] : sources) {
-          const auto& [grid, c] = target;
-          float value = px[channel];
-          if (grid->kind == VolumeGrid::Kind::ProbeState) {
-            if (!(value == 0.0f || value == 1.0f || value == 2.0f))
-              throw InputError(fmt::format("{}: probe_state at ({}, {}) is {}; states are 0, 1 or 2", slicePath, i, j, value));
-          } else if (scaled(*grid)) {
-            value = float(double(value) * scale);
-          }
-          setGridValue(volume, *grid, c, p, value);
-        }
-      }
-  }
+  for (int k = 0; k < g.dims.z(); ++k) readSlice(dir, manifest, k, manifestPath, grids, pixels, volume);
   requireFiniteValues(volume, path);
   return volume;
 }

@@ -1,8 +1,8 @@
 #pragma once
 #include <string>
 
-#include "bake/Basis.h"
-#include "bake/Volume.h"
+#include "basis/Basis.h"
+#include "volume/Volume.h"
 
 namespace baker {
 

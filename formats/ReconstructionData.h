@@ -1,7 +1,7 @@
 #pragma once
 #include <nlohmann/json.hpp>
 
-#include "bake/Basis.h"
+#include "basis/Basis.h"
 
 namespace baker {
 

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "common/Error.h"
-#include "formats/Fnv1a64.h"
+#include "common/Fnv1a64.h"
 
 namespace baker {
 namespace {

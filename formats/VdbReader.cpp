@@ -3,12 +3,12 @@
 #include <fmt/format.h>
 #include <openvdb/openvdb.h>
 
-#include "bake/BasisRegistry.h"
+#include "basis/BasisRegistry.h"
 #include "common/Error.h"
 #include "formats/VdbChecksum.h"
+#include "formats/VolumeHeader.h"
 #include "formats/VolumeLayout.h"
 #include "formats/VolumeMetadata.h"
-#include "formats/VolumeHeader.h"
 
 namespace baker {
 namespace {

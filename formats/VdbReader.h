@@ -1,7 +1,7 @@
 #pragma once
 #include <string>
 
-#include "bake/Volume.h"
+#include "volume/Volume.h"
 
 namespace baker {
 

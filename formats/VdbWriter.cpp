@@ -14,12 +14,12 @@
 #include <memory>
 #include <string>
 
-#include "bake/Baker.h"
 #include "formats/AtomicFile.h"
 #include "formats/VdbChecksum.h"
 #include "formats/VdbUuid.h"
 #include "formats/VolumeLayout.h"
 #include "formats/VolumeMetadata.h"
+#include "volume/ProbeGrid.h"
 
 namespace baker {
 namespace {
@@ -33,7 +33,7 @@ typename GridType::Ptr sparseGrid(const Volume& v, const std::vector<bool>& stor
   static_assert(LeafType::DIM == kBrickSize, "a brick is one OpenVDB leaf");
   auto grid = GridType::create(typename GridType::ValueType(0));
   const ProbeGrid& g = v.grid;
-  const Eigen::Vector3i bricks = (g.dims.array() + kBrickSize - 1) / kBrickSize;
+  const Eigen::Vector3i bricks = g.brickCounts();
   for (int bk = 0; bk < bricks.z(); ++bk)
     for (int bj = 0; bj < bricks.y(); ++bj)
       for (int bi = 0; bi < bricks.x(); ++bi) {

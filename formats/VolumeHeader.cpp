@@ -6,11 +6,11 @@
 #include <charconv>
 #include <cmath>
 
-#include "bake/BasisRegistry.h"
-#include "bake/MemoryEstimate.h"
+#include "basis/BasisRegistry.h"
 #include "common/Error.h"
 #include "formats/VolumeLayout.h"
 #include "formats/VolumeMetadata.h"
+#include "volume/MemoryEstimate.h"
 
 namespace baker {
 

@@ -3,8 +3,8 @@
 #include <utility>
 #include <vector>
 
-#include "bake/ProbeGrid.h"
-#include "bake/Volume.h"
+#include "volume/ProbeGrid.h"
+#include "volume/Volume.h"
 
 namespace baker {
 

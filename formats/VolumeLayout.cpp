@@ -6,7 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "bake/Baker.h"
+#include "volume/ProbeGrid.h"
 
 namespace baker {
 
@@ -68,12 +68,12 @@ void prepareForReading(Volume& v, bool hasProbeStates) {
 }
 
 std::int64_t brickOf(const ProbeGrid& grid, int i, int j, int k) {
-  const Eigen::Vector3i bricks = (grid.dims.array() + kBrickSize - 1) / kBrickSize;
+  const Eigen::Vector3i bricks = grid.brickCounts();
   return i / kBrickSize + std::int64_t(bricks.x()) * (j / kBrickSize + std::int64_t(bricks.y()) * (k / kBrickSize));
 }
 
 std::vector<bool> storedBricks(const Volume& v) {
-  const Eigen::Vector3i bricks = (v.grid.dims.array() + kBrickSize - 1) / kBrickSize;
+  const Eigen::Vector3i bricks = v.grid.brickCounts();
   const std::size_t count = std::size_t(bricks.x()) * bricks.y() * bricks.z();
   if (v.states.empty()) return std::vector<bool>(count, true);
   std::vector<bool> stored(count, false);

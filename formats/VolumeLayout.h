@@ -3,8 +3,8 @@
 #include <string>
 #include <vector>
 
-#include "bake/Basis.h"
-#include "bake/Volume.h"
+#include "basis/Basis.h"
+#include "volume/Volume.h"
 
 namespace baker {
 

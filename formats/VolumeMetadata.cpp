@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/Error.h"
-#include "formats/Fnv1a64.h"
+#include "common/Fnv1a64.h"
 #include "formats/ReconstructionData.h"
 #include "formats/VolumeLayout.h"
 
@@ -56,18 +56,6 @@ void readSettings(const std::vector<std::pair<std::string, std::string>>& metada
   const std::string prefix = "baker.setting.";
   for (const auto& [key, value] : metadata)
     if (key.rfind(prefix, 0) == 0) volume.settings[key.substr(prefix.size())] = value;
-}
-
-std::string fileHash(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(fmt::format("{}: cannot read the file to hash it", path));
-  Fnv1a64 hash;
-  char buffer[1 << 16];
-  while (in) {
-    in.read(buffer, sizeof buffer);
-    hash.add(buffer, std::size_t(in.gcount()));
-  }
-  return fmt::format("{:016x}", hash.value());
 }
 
 }  // namespace baker

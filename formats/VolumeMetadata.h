@@ -3,8 +3,8 @@
 #include <utility>
 #include <vector>
 
-#include "bake/Basis.h"
-#include "bake/Volume.h"
+#include "basis/Basis.h"
+#include "volume/Volume.h"
 
 namespace baker {
 
@@ -21,8 +21,5 @@ constexpr int kVolumeFormatVersion = 3;
 // Recovers volume.settings from "baker.setting.*" keys.
 void readSettings(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume);
 
-// A 64-bit FNV-1a hash of a file's bytes, as 16 hex digits: enough to tell a changed scene
-// from an unchanged one (not a cryptographic digest). InputError naming the file if unreadable.
-std::string fileHash(const std::string& path);
 
 }  // namespace baker

@@ -4,7 +4,7 @@
 
 #include <filesystem>
 
-#include "bake/BasisRegistry.h"
+#include "basis/BasisRegistry.h"
 #include "common/Error.h"
 #include "formats/ExrSlices.h"
 #include "formats/VdbReader.h"

@@ -2,8 +2,8 @@
 #include <memory>
 #include <string>
 
-#include "bake/Basis.h"
-#include "bake/Volume.h"
+#include "basis/Basis.h"
+#include "volume/Volume.h"
 
 namespace baker {
 

@@ -19,15 +19,15 @@ VolumeOutput volumeOutput(const std::string& scenePath, std::string out, const s
   else if (format == "exr" || format.empty())
     o.format = VolumeFormat::Exr;
   else
-    throw InputError(fmt::format("--format {}: expected vdb or exr", format));
+    throw SettingError("format", fmt::format("{}: expected vdb or exr", format));
   if (o.format == VolumeFormat::Exr && vdbPath)
-    throw InputError(fmt::format("--out {}: a .vdb name for EXR slices; give a directory name", out));
+    throw SettingError("out", fmt::format("{}: a .vdb name for EXR slices; give a directory name", out));
   if (precision == "half")
     o.precision = ExrPrecision::Half;
   else if (precision == "float")
     o.precision = ExrPrecision::Float;
   else
-    throw InputError(fmt::format("--precision {}: expected half or float", precision));
+    throw SettingError("precision", fmt::format("{}: expected half or float", precision));
   const std::string stem = std::filesystem::path(scenePath).stem().string();
   o.path = !out.empty() ? out : o.format == VolumeFormat::Vdb ? stem + ".vdb" : stem + "_exr";
   if (o.format == VolumeFormat::Vdb) {

@@ -1,9 +1,9 @@
 #pragma once
 #include <string>
 
-#include "bake/Basis.h"
-#include "bake/Volume.h"
+#include "basis/Basis.h"
 #include "formats/ExrSlices.h"
+#include "volume/Volume.h"
 
 namespace baker {
 

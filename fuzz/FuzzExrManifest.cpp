@@ -5,7 +5,7 @@
 // with InputError; anything else is a finding.
 #include <filesystem>
 
-#include "bake/BasisRegistry.h"
+#include "basis/BasisRegistry.h"
 #include "common/Error.h"
 #include "formats/ExrSlices.h"
 #include "formats/VolumeReader.h"

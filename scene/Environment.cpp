@@ -48,8 +48,8 @@ Environment Environment::latLong(int width, int height, std::vector<float> rgb, 
     }
     for (int c = 0; c < 3; ++c) texel[c] *= intensity;
     if (!Eigen::Vector3f::Map(texel).allFinite())
-      throw InputError(fmt::format("{}: texel ({}, {}) times --env-intensity {} is beyond single precision",
-                                   env.source_, t % width, t / width, intensity));
+      throw SettingError("env_intensity", fmt::format("{} takes texel ({}, {}) of {} beyond single precision", intensity,
+                                                      t % width, t / width, env.source_));
   }
   env.rgb_ = std::move(rgb);
 
@@ -73,10 +73,10 @@ Environment Environment::latLong(int width, int height, std::vector<float> rgb, 
 std::string Environment::describe() const {
   switch (kind_) {
     case Kind::None: return "none";
-    case Kind::Constant: return fmt::format("--sky {},{},{}", constant_.x(), constant_.y(), constant_.z());
+    case Kind::Constant: return fmt::format("constant sky {},{},{}", constant_.x(), constant_.y(), constant_.z());
     case Kind::Map: break;
   }
-  return fmt::format("--env {} ({} × {}, intensity {}, rotated {}°)", source_, width_, height_, intensity_,
+  return fmt::format("map {} ({} × {}, intensity {}, rotated {}°)", source_, width_, height_, intensity_,
                      rotationDegrees_);
 }
 

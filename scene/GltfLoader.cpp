@@ -13,11 +13,11 @@
 #include "common/Error.h"
 #include "scene/GltfAccessor.h"
 #include "scene/GltfFiles.h"
-#include "scene/GltfReferences.h"
 #include "scene/GltfImages.h"
 #include "scene/GltfLights.h"
 #include "scene/GltfMaterials.h"
 #include "scene/GltfMeshReader.h"
+#include "scene/GltfReferences.h"
 
 namespace baker {
 namespace {
@@ -121,7 +121,7 @@ class SceneBuilder {
     scene_.sceneCount = count;
     if (requestedScene_ >= 0) {
       if (requestedScene_ >= count)
-        throw InputError(fmt::format("{}: --scene {}: the file has {} scene(s)", file_, requestedScene_, count));
+        throw SettingError("scene", fmt::format("{}: {}: the file has {} scene(s)", requestedScene_, file_, count));
       scene_.sceneIndex = requestedScene_;
     } else if (count == 0) {
       if (!model_.nodes.empty())

@@ -84,6 +84,40 @@ void GltfMeshReader::readPrimitive(int meshIndex, int primitiveIndex, const Mesh
   mesh.positions.insert(mesh.positions.end(), positions.begin(), positions.end());
   const std::uint32_t material = materialOf(prim, path);
 
+  readTexcoordsAndColors(prim, path, vertexCount, material, mesh);
+
+  const std::vector<std::uint32_t> indices = readIndices(prim, path, vertexCount);
+
+  const int list = materials_.materials[material].alphaTested() ? 1 : 0;
+  std::size_t degenerate = 0, firstDegenerate = 0;
+  auto emit = [&](std::size_t k, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    const Eigen::Vector3f& p0 = positions[a];
+    // Exactly zero area (or NaN): Embree would never report such a triangle, shading could not
+    // interpolate on it, and a bake loses nothing without it.
+    if (!((positions[b] - p0).cross(positions[c] - p0).squaredNorm() > 0.0f)) {
+      if (degenerate++ == 0) firstDegenerate = k;
+      return;
+    }
+    lists.triangles[list].emplace_back(int(base + a), int(base + b), int(base + c));
+    lists.materials[list].push_back(material);
+  };
+  const std::size_t n = indices.size();
+  if (prim.mode == TINYGLTF_MODE_TRIANGLES) {
+    for (std::size_t i = 0; i + 2 < n; i += 3) emit(i / 3, indices[i], indices[i + 1], indices[i + 2]);
+  } else if (prim.mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+    // Every other triangle of a strip is listed clockwise; the spec's order restores it.
+    for (std::size_t i = 0; i + 2 < n; ++i)
+      if (i % 2 == 0) emit(i, indices[i], indices[i + 1], indices[i + 2]);
+      else emit(i, indices[i + 1], indices[i], indices[i + 2]);
+  } else {
+    for (std::size_t i = 1; i + 1 < n; ++i) emit(i - 1, indices[0], indices[i], indices[i + 1]);
+  }
+  degenerate_.note(degenerate, fmt::format("{} (triangle {})", path, firstDegenerate));
+}
+
+void GltfMeshReader::readTexcoordsAndColors(const tinygltf::Primitive& prim, const std::string& path,
+                                            std::size_t vertexCount, std::uint32_t material, Mesh& mesh) {
+  const std::size_t base = mesh.positions.size() - vertexCount;
   // Attributes stay empty until a primitive has them; the vertices of primitives without them
   // then get the default (uv (0, 0), white), the rest are filled in by read().
   for (int set : materials_.texcoordSets) {
@@ -115,7 +149,10 @@ void GltfMeshReader::readPrimitive(int meshIndex, int primitiveIndex, const Mesh
     }
     outOfRangeColors_.note(sanitized, fmt::format("{}.attributes.COLOR_0[{}]", path, firstSanitized));
   }
+}
 
+std::vector<std::uint32_t> GltfMeshReader::readIndices(const tinygltf::Primitive& prim, const std::string& path,
+                                                       std::size_t vertexCount) {
   std::vector<std::uint32_t> indices;
   if (prim.indices >= 0) {
     indices = GltfAccessor(model_, prim.indices, file_, path + ".indices").readIndices();
@@ -127,32 +164,7 @@ void GltfMeshReader::readPrimitive(int meshIndex, int primitiveIndex, const Mesh
     indices.resize(vertexCount);
     for (std::size_t i = 0; i < indices.size(); ++i) indices[i] = std::uint32_t(i);
   }
-
-  const int list = materials_.materials[material].alphaTested() ? 1 : 0;
-  std::size_t degenerate = 0, firstDegenerate = 0;
-  auto emit = [&](std::size_t k, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-    const Eigen::Vector3f& p0 = positions[a];
-    // Exactly zero area (or NaN): Embree would never report such a triangle, shading could not
-    // interpolate on it, and a bake loses nothing without it.
-    if (!((positions[b] - p0).cross(positions[c] - p0).squaredNorm() > 0.0f)) {
-      if (degenerate++ == 0) firstDegenerate = k;
-      return;
-    }
-    lists.triangles[list].emplace_back(int(base + a), int(base + b), int(base + c));
-    lists.materials[list].push_back(material);
-  };
-  const std::size_t n = indices.size();
-  if (prim.mode == TINYGLTF_MODE_TRIANGLES) {
-    for (std::size_t i = 0; i + 2 < n; i += 3) emit(i / 3, indices[i], indices[i + 1], indices[i + 2]);
-  } else if (prim.mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
-    // Every other triangle of a strip is listed clockwise; the spec's order restores it.
-    for (std::size_t i = 0; i + 2 < n; ++i)
-      if (i % 2 == 0) emit(i, indices[i], indices[i + 1], indices[i + 2]);
-      else emit(i, indices[i + 1], indices[i], indices[i + 2]);
-  } else {
-    for (std::size_t i = 1; i + 1 < n; ++i) emit(i - 1, indices[0], indices[i], indices[i + 1]);
-  }
-  degenerate_.note(degenerate, fmt::format("{} (triangle {})", path, firstDegenerate));
+  return indices;
 }
 
 std::vector<Eigen::Vector3f> GltfMeshReader::readPositions(const tinygltf::Primitive& prim, const std::string& path,

@@ -65,16 +65,17 @@ void alphaFilter(const RTCFilterFunctionNArguments* args) {
 }
 
 template <typename EmbreeCall>
-void timedEmbreeCall(double* seconds, EmbreeCall call) {
-  if (!seconds) return call();
+void timedEmbreeCall(RayObserver* observer, EmbreeCall call) {
+  if (!observer || !observer->timesEmbreeCalls()) return call();
   const auto start = std::chrono::steady_clock::now();
   call();
-  *seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  observer->embreeCall(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
 }
 
 }  // namespace
 
-RayTracer::RayTracer(const Scene& scene, bool alphaFilters) : scene_(scene), alphaFilters_(alphaFilters) {
+RayTracer::RayTracer(const Scene& scene, bool alphaFilters, RayObserver* observer)
+    : scene_(scene), alphaFilters_(alphaFilters), observer_(observer) {
   device_ = rtcNewDevice(nullptr);
   if (!device_) throw std::runtime_error("Embree: cannot create a device");
   rtcScene_ = rtcNewScene(device_);
@@ -184,10 +185,7 @@ void RayTracer::intersect8(const Eigen::Vector3f& origin, const Eigen::Vector3f*
 }
 
 void RayTracer::intersect8(const Ray* rays, int count, Hit* hits) const {
-  if (log_) {
-    log_->closest.insert(log_->closest.end(), rays, rays + count);
-    log_->packetSizes.push_back(count);
-  }
+  if (observer_) observer_->closest(rays, count);
   alignas(32) int valid[8];
   alignas(32) RTCRayHit8 packet;
   for (int i = 0; i < 8; ++i) {
@@ -211,7 +209,7 @@ void RayTracer::intersect8(const Ray* rays, int count, Hit* hits) const {
   }
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  timedEmbreeCall(embreeSeconds_, [&] { rtcIntersect8(valid, rtcScene_, &context, &packet); });
+  timedEmbreeCall(observer_, [&] { rtcIntersect8(valid, rtcScene_, &context, &packet); });
   for (int i = 0; i < count; ++i)
     hits[i] = packet.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID
                   ? Hit{}
@@ -221,10 +219,7 @@ void RayTracer::intersect8(const Ray* rays, int count, Hit* hits) const {
 }
 
 void RayTracer::occluded(const Ray* rays, int count, bool* blocked) const {
-  if (log_) {
-    log_->occlusion.insert(log_->occlusion.end(), rays, rays + count);
-    log_->streamSizes.push_back(count);
-  }
+  if (observer_) observer_->occlusion(rays, count);
   constexpr int kChunk = 64;
   alignas(16) RTCRay stream[kChunk];
   RTCIntersectContext context;
@@ -247,7 +242,7 @@ void RayTracer::occluded(const Ray* rays, int count, bool* blocked) const {
       ray.id = unsigned(k);
       ray.flags = 0;
     }
-    timedEmbreeCall(embreeSeconds_, [&] { rtcOccluded1M(rtcScene_, &context, stream, unsigned(n), sizeof(RTCRay)); });
+    timedEmbreeCall(observer_, [&] { rtcOccluded1M(rtcScene_, &context, stream, unsigned(n), sizeof(RTCRay)); });
     // Embree marks an occluded ray by setting its tfar to −∞.
     for (int k = 0; k < n; ++k) blocked[first + k] = stream[k].tfar == -std::numeric_limits<float>::infinity();
   }

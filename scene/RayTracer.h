@@ -35,6 +35,18 @@ struct Ray {
   float tfar = std::numeric_limits<float>::infinity();
 };
 
+// Hears what a RayTracer traces: the one hook a benchmark has into it (bench/ records the rays
+// to replay them with Embree alone, and times Embree's calls). Given at construction and
+// called from every tracing thread; an observer that is not thread-safe serves one thread.
+class RayObserver {
+ public:
+  virtual ~RayObserver() = default;
+  virtual void closest(const Ray* rays, int count) = 0;    // before each intersect8
+  virtual void occlusion(const Ray* rays, int count) = 0;  // before each occluded stream
+  virtual bool timesEmbreeCalls() const = 0;
+  virtual void embreeCall(double seconds) = 0;             // after each Embree call, when it times them
+};
+
 // One Embree device and scene over a Scene. A mesh that several instances use is built once,
 // in its own Embree scene, and placed by instance geometries; a mesh used once goes into the
 // top-level scene in world space (one BVH level fewer to traverse). MASK and BLEND triangles
@@ -43,7 +55,7 @@ struct Ray {
 class RayTracer {
  public:
   // alphaFilters = false treats MASK and BLEND triangles as opaque (`--no alpha_filters`).
-  explicit RayTracer(const Scene& scene, bool alphaFilters = true);
+  explicit RayTracer(const Scene& scene, bool alphaFilters = true, RayObserver* observer = nullptr);
   ~RayTracer();
   RayTracer(const RayTracer&) = delete;
   RayTracer& operator=(const RayTracer&) = delete;
@@ -55,20 +67,6 @@ class RayTracer {
   // blocked[i]: something stops rays[i] between its tnear and tfar. Streams of rays
   // (rtcOccluded1M), any count.
   void occluded(const Ray* rays, int count, bool* blocked) const;
-
-  // Every ray traced from now on, in the calls that traced them, for a benchmark to replay with
-  // nothing but Embree (bench_bake's trace-only mode). Single-threaded use only; null stops.
-  struct RayLog {
-    std::vector<Ray> closest;       // intersect8 rays, packet after packet
-    std::vector<int> packetSizes;
-    std::vector<Ray> occlusion;     // occluded rays, stream after stream
-    std::vector<int> streamSizes;
-  };
-  void record(RayLog* log) { log_ = log; }
-  // Adds the time of every Embree call from now on (a clock read on either side of it) to
-  // *seconds: a benchmark times Embree inside a bake and replaying its rays alike, to see
-  // whether shading slows Embree down. Single-threaded use only; null stops.
-  void timeEmbreeCalls(double* seconds) { embreeSeconds_ = seconds; }
 
   int instancedMeshes() const { return instancedMeshes_; }    // meshes built once and instanced
   int filteredGeometries() const { return filteredGeometries_; }  // geometries with alpha filters
@@ -98,8 +96,7 @@ class RayTracer {
   std::vector<std::unique_ptr<FilterTarget>> filterTargets_;  // stable addresses for Embree's user data
   int instancedMeshes_ = 0;
   int filteredGeometries_ = 0;
-  RayLog* log_ = nullptr;
-  double* embreeSeconds_ = nullptr;
+  RayObserver* observer_ = nullptr;
 };
 
 }  // namespace baker

@@ -15,6 +15,12 @@ std::string lightList(const SceneCensus& c) {
 
 }  // namespace
 
+const std::vector<std::string>& effectKeys() {
+  static const std::vector<std::string> keys = {"emission",     "punctual_lights", "emissive_lights", "environment",
+                                                "bounces",      "alpha_filters",   "direct_punctual", "probe_validity"};
+  return keys;
+}
+
 std::vector<PlannedEffect> planEffects(const Scene& scene, const SceneCensus& c) {
   std::vector<PlannedEffect> plan;
   const std::uint64_t n = c.triangles;
@@ -36,7 +42,7 @@ std::vector<PlannedEffect> planEffects(const Scene& scene, const SceneCensus& c)
                     fmt::format("{} emissive triangle(s) light {} reflecting triangle(s)", c.emissiveTriangles,
                                 c.reflectiveTriangles)});
   if (scene.environment.kind() == Environment::Kind::None)
-    plan.push_back({"environment", false, "no --env or --sky was given"});
+    plan.push_back({"environment", false, "no environment map or sky was given"});
   else if (!scene.environment.emits())
     plan.push_back({"environment", false, scene.environment.describe() + " is black"});
   else

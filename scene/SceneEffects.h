@@ -24,4 +24,7 @@ struct PlannedEffect {
 // by the probes themselves (there are some), probe validity (there is geometry to be inside of).
 std::vector<PlannedEffect> planEffects(const Scene& scene, const SceneCensus& census);
 
+// The keys of every plan, in its order.
+const std::vector<std::string>& effectKeys();
+
 }  // namespace baker

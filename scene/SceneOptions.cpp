@@ -5,13 +5,13 @@
 #include <cmath>
 
 #include "common/Error.h"
-#include "formats/RgbImage.h"
+#include "images/RgbImage.h"
 
 namespace baker {
 namespace {
 
 Eigen::Vector3f parseSky(const std::string& text) {
-  const InputError bad(fmt::format("--sky must be three finite non-negative numbers r,g,b, got \"{}\"", text));
+  const SettingError bad("sky", fmt::format("must be three finite non-negative numbers r,g,b, got \"{}\"", text));
   std::vector<std::string> parts(1);
   for (char c : text) {
     if (c == ',') parts.emplace_back();
@@ -33,35 +33,17 @@ Eigen::Vector3f parseSky(const std::string& text) {
 
 }  // namespace
 
-void addSceneOptions(CLI::App& app, SceneOptions& options) {
-  const CLI::Validator sceneIndex(
-      [](std::string& value) {
-        return !value.empty() && value.find_first_not_of("0123456789") == std::string::npos
-                   ? std::string()
-                   : "must be a scene index (0, 1, ...), got " + value;
-      },
-      "INDEX");
-  app.add_option("--scene", options.scene, "glTF scene to load; default: the file's default scene")->check(sceneIndex);
-  app.add_option("--env", options.environmentMap,
-                 "lat-long environment map (.hdr/.exr; +Y up, image centre along +X, u = 0.75 along +Z)");
-  app.add_option("--env-intensity", options.environmentIntensity, "multiplier on the environment map")
-      ->capture_default_str();
-  app.add_option("--env-rotation", options.environmentRotation,
-                 "rotation of the environment map about +Y in degrees (right-handed)")
-      ->capture_default_str();
-  app.add_option("--sky", options.sky, "constant sky radiance r,g,b instead of a map");
-}
-
 Environment environmentFromOptions(const SceneOptions& options, std::vector<std::string>& warnings) {
   // Radiance is carried in single precision, so the multiplier must be a finite float too.
   if (!std::isfinite(float(options.environmentIntensity)) || options.environmentIntensity < 0.0)
-    throw InputError(fmt::format("--env-intensity must be a finite non-negative number within single precision, got {}",
-                                 options.environmentIntensity));
+    throw SettingError("env_intensity",
+                       fmt::format("must be a finite non-negative number within single precision, got {}",
+                                   options.environmentIntensity));
   if (!std::isfinite(options.environmentRotation))
-    throw InputError(fmt::format("--env-rotation must be a finite number of degrees, got {}",
-                                 options.environmentRotation));
+    throw SettingError("env_rotation",
+                       fmt::format("must be a finite number of degrees, got {}", options.environmentRotation));
   if (!options.environmentMap.empty() && !options.sky.empty())
-    throw InputError("--env and --sky both describe the environment; give one of them");
+    throw SettingError("sky", "and an environment map both describe the environment; give one of them");
   if (!options.sky.empty()) return Environment::constant(parseSky(options.sky));
   if (options.environmentMap.empty()) return Environment();
   RgbImage image = readRgbImage(options.environmentMap);

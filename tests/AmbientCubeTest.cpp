@@ -4,10 +4,10 @@
 #include <limits>
 #include <random>
 
-#include "bake/AmbientCubeBasis.h"
-#include "bake/BasisRegistry.h"
-#include "bake/DirectionSet.h"
-#include "bake/ProjectionOperator.h"
+#include "basis/AmbientCubeBasis.h"
+#include "basis/BasisRegistry.h"
+#include "basis/DirectionSet.h"
+#include "basis/ProjectionOperator.h"
 
 namespace baker {
 namespace {

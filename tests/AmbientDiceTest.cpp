@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
-#include "bake/AmbientDiceBezier.h"
-#include "bake/AmbientDiceLinear.h"
-#include "bake/AmbientDiceSrbf.h"
-#include "bake/BasisRegistry.h"
-#include "bake/Icosahedron.h"
+#include "basis/AmbientDiceBezier.h"
+#include "basis/AmbientDiceLinear.h"
+#include "basis/AmbientDiceSrbf.h"
+#include "basis/BasisRegistry.h"
+#include "basis/Icosahedron.h"
 
 namespace baker {
 namespace {

@@ -1,35 +1,16 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
+#include "tests/BakerProcess.h"
 #include "tests/TestData.h"
 
 namespace baker {
 namespace {
 
-struct ProcessResult {
-  int exitCode = -1;
-  std::string stderrText;
-};
-
-// Runs the real baker binary, as a user would, in `dir`.
-ProcessResult runBaker(const std::string& dir, const std::string& args) {
-  const std::string errFile = dir + "/stderr.txt";
-  const std::string command = "cd '" + dir + "' && '" BAKER_BINARY "' " + args + " > /dev/null 2> '" + errFile + "'";
-  const int status = std::system(command.c_str());
-  ProcessResult run;
-  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream in(errFile);
-  std::stringstream text;
-  text << in.rdbuf();
-  run.stderrText = text.str();
-  std::filesystem::remove(errFile);
-  return run;
-}
 
 std::vector<std::string> filesIn(const std::string& dir) {
   std::vector<std::string> names;
@@ -46,10 +27,10 @@ class BadInput : public ::testing::Test {
   // One line on stderr that mentions `needle`, exit code 2, and nothing written.
   void expectRejected(const std::string& args, const std::string& needle,
                       const std::vector<std::string>& keep = {}) {
-    const ProcessResult run = runBaker(dir_, args);
-    EXPECT_EQ(run.exitCode, 2) << run.stderrText;
-    EXPECT_NE(run.stderrText.find(needle), std::string::npos) << run.stderrText;
-    EXPECT_EQ(std::count(run.stderrText.begin(), run.stderrText.end(), '\n'), 1) << run.stderrText;
+    const test::ProcessResult run = test::runBaker(dir_, args);
+    EXPECT_EQ(run.exitCode, 2) << run.err;
+    EXPECT_NE(run.err.find(needle), std::string::npos) << run.err;
+    EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
     EXPECT_EQ(filesIn(dir_), keep) << "no output may be left behind";
   }
   std::string dir_, scene_;
@@ -59,7 +40,7 @@ class BadInput : public ::testing::Test {
 TEST_F(BadInput, NonNegativeWithSignChangingFunctions) {
   for (const char* basis : {"sh-l2", "ad-rgb", "ad-ycocg"})
     expectRejected(fmt::format("'{}' --basis {} --non-negative --out out.vdb", scene_, basis),
-                   fmt::format("--non-negative: {} functions change sign", basis));
+                   fmt::format("--non-negative does not apply to {}: its functions change sign", basis));
 }
 
 TEST_F(BadInput, MissingSceneFile) { expectRejected("no_such_scene.gltf --out out.vdb", "no_such_scene.gltf"); }
@@ -106,8 +87,8 @@ TEST_F(BadInput, OutputInAMissingDirectory) {
 }
 
 TEST_F(BadInput, ValidBakeWritesExactlyTheVolume) {
-  const ProcessResult run = runBaker(dir_, "'" + scene_ + "' --spacing 1 --rays 32 --out out.vdb");
-  EXPECT_EQ(run.exitCode, 0) << run.stderrText;
+  const test::ProcessResult run = test::runBaker(dir_, "'" + scene_ + "' --spacing 1 --rays 32 --out out.vdb");
+  EXPECT_EQ(run.exitCode, 0) << run.err;
   EXPECT_EQ(filesIn(dir_), std::vector<std::string>{dir_ + "/out.vdb"});
 }
 

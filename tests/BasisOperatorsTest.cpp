@@ -3,10 +3,10 @@
 #include <Eigen/Dense>
 #include <random>
 
-#include "bake/BasisRegistry.h"
-#include "bake/GramOperators.h"
-#include "bake/SphereQuadrature.h"
-#include "bake/SphericalHarmonics.h"
+#include "basis/BasisRegistry.h"
+#include "basis/GramOperators.h"
+#include "basis/SphereQuadrature.h"
+#include "basis/SphericalHarmonics.h"
 #include "tests/OnThreads.h"
 
 namespace baker {

@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "bake/BasisRegistry.h"
-#include "bake/Icosahedron.h"
-#include "bake/ShBasis.h"
+#include "basis/BasisRegistry.h"
+#include "basis/Icosahedron.h"
+#include "basis/ShBasis.h"
 #include "decoders/baker_irradiance.h"
 #include "formats/ReconstructionData.h"
 

@@ -3,11 +3,11 @@
 #include <cmath>
 #include <vector>
 
-#include "bake/DirectionSet.h"
 #include "bake/LightAim.h"
 #include "bake/PathRandom.h"
 #include "bake/ProbeBaker.h"
-#include "bake/ShBasis.h"
+#include "basis/DirectionSet.h"
+#include "basis/ShBasis.h"
 #include "scene/GltfLoader.h"
 #include "scene/RayTracer.h"
 #include "tests/SeedStatistics.h"

@@ -1,9 +1,9 @@
 #include <gtest/gtest.h>
 
 #include "bake/Baker.h"
-#include "bake/DirectionSet.h"
 #include "bake/PathIntegrator.h"
-#include "bake/ShBasis.h"
+#include "basis/DirectionSet.h"
+#include "basis/ShBasis.h"
 #include "scene/GltfLoader.h"
 #include "scene/RayTracer.h"
 #include "tests/TestData.h"

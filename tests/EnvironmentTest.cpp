@@ -12,14 +12,14 @@
 #include <string>
 #include <vector>
 
-#include "bake/BasisRegistry.h"
-#include "bake/IrradianceFit.h"
-#include "bake/IrradianceReference.h"
-#include "bake/LatLongEnvironment.h"
-#include "cli/EnvCommand.h"
+#include "basis/BasisRegistry.h"
 #include "common/Error.h"
-#include "formats/RgbImage.h"
+#include "images/RgbImage.h"
+#include "tests/BakerProcess.h"
 #include "tests/TestData.h"
+#include "validate/IrradianceFit.h"
+#include "validate/IrradianceReference.h"
+#include "validate/LatLongEnvironment.h"
 
 namespace baker {
 namespace {
@@ -201,23 +201,10 @@ TEST(RgbImage, RefusesAClaimedSizeBeyondTheLimitBeforeReading) {
   }
 }
 
-struct CommandResult {
-  int exitCode = -1;
-  std::string out, err;
-};
-
-// Runs `baker env ARGS...` in this process, as main() would.
-CommandResult runEnv(std::vector<std::string> args) {
+// Runs `baker env ARGS...`, as a user would.
+test::ProcessResult runEnv(std::vector<std::string> args) {
   args.insert(args.begin(), "env");
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  ::testing::internal::CaptureStdout();
-  ::testing::internal::CaptureStderr();
-  CommandResult result;
-  result.exitCode = runEnvCommand(int(argv.size()), argv.data());
-  result.out = ::testing::internal::GetCapturedStdout();
-  result.err = ::testing::internal::GetCapturedStderr();
-  return result;
+  return test::runBaker(std::filesystem::temp_directory_path().string(), args);
 }
 
 std::vector<std::string> filesIn(const std::string& dir) {
@@ -237,7 +224,7 @@ class EnvCommand : public ::testing::Test {
   void TearDown() override { std::filesystem::remove_all(dir_); }
   // Exit code 2, one line on stderr mentioning `needle`, and nothing written beside the probe.
   void expectRejected(const std::vector<std::string>& args, const std::string& needle) {
-    const CommandResult run = runEnv(args);
+    const test::ProcessResult run = runEnv(args);
     EXPECT_EQ(run.exitCode, 2) << run.err;
     EXPECT_NE(run.err.find(needle), std::string::npos) << run.err;
     EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
@@ -257,7 +244,7 @@ TEST_F(EnvCommand, SgSharpnessIsRejectedForOtherBases) {
 }
 
 TEST_F(EnvCommand, ReportsBothFitsAsJsonAndWritesTheImages) {
-  const CommandResult run = runEnv({probe_, "--basis", "ambient-cube", "--json", "--out-dir", dir_});
+  const test::ProcessResult run = runEnv({probe_, "--basis", "ambient-cube", "--json", "--out-dir", dir_});
   ASSERT_EQ(run.exitCode, 0) << run.err;
   const nlohmann::json report = nlohmann::json::parse(run.out);
   EXPECT_EQ(report.at("basis"), "ambient-cube");

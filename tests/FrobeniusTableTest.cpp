@@ -3,8 +3,8 @@
 #include <cmath>
 #include <string>
 
-#include "bake/BasisRegistry.h"
-#include "bake/GramOperators.h"
+#include "basis/BasisRegistry.h"
+#include "basis/GramOperators.h"
 
 namespace baker {
 namespace {

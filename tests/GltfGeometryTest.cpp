@@ -127,7 +127,7 @@ TEST_F(GltfGeometry, SceneOptionPicksTheGltfScene) {
     load(gltf, missing);
     FAIL() << "scene 2 does not exist";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("--scene 2"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("scene 2: "), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("scene.gltf"), std::string::npos) << e.what();
   }
 }

@@ -2,7 +2,6 @@
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
-#include <sys/wait.h>
 
 #include <cstring>
 #include <filesystem>
@@ -11,17 +10,6 @@
 #include <stdexcept>
 
 namespace baker::test {
-namespace {
-
-std::string readText(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-}  // namespace
-
 GltfBuilder::GltfBuilder() {
   json_ = {{"asset", {{"version", "2.0"}}},
            {"scene", 0},
@@ -167,18 +155,5 @@ void writeFloatImage(const std::string& path, int width, int height, const std::
     throw std::runtime_error("cannot write test image " + path);
 }
 
-ProcessResult runBaker(const std::string& dir, const std::string& args) {
-  const std::string outFile = dir + "/.stdout.txt", errFile = dir + "/.stderr.txt";
-  const std::string command =
-      "cd '" + dir + "' && '" BAKER_BINARY "' " + args + " > '" + outFile + "' 2> '" + errFile + "'";
-  const int status = std::system(command.c_str());
-  ProcessResult run;
-  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  run.out = readText(outFile);
-  run.err = readText(errFile);
-  std::filesystem::remove(outFile);
-  std::filesystem::remove(errFile);
-  return run;
-}
 
 }  // namespace baker::test

@@ -2,6 +2,8 @@
 #include <cstdint>
 #include <nlohmann/json.hpp>
 #include <string>
+
+#include "tests/BakerProcess.h"
 #include <vector>
 
 namespace baker::test {
@@ -54,12 +56,5 @@ std::vector<unsigned char> encodePng(int width, int height, int channels, const 
 // Writes a float RGB image (rows from the top) in the format `path`'s extension names (.hdr, .exr).
 void writeFloatImage(const std::string& path, int width, int height, const std::vector<float>& rgb);
 
-struct ProcessResult {
-  int exitCode = -1;
-  std::string out;
-  std::string err;
-};
-// Runs the real baker binary with `args` in `dir`, as a user would.
-ProcessResult runBaker(const std::string& dir, const std::string& args);
 
 }  // namespace baker::test

@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "bake/Icosahedron.h"
+#include "basis/Icosahedron.h"
 
 namespace baker {
 namespace {

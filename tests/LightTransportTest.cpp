@@ -5,9 +5,9 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "bake/DirectionSet.h"
 #include "bake/PathIntegrator.h"
-#include "bake/ShBasis.h"
+#include "basis/DirectionSet.h"
+#include "basis/ShBasis.h"
 #include "scene/GltfLoader.h"
 #include "scene/RayTracer.h"
 #include "scene/Shading.h"

@@ -3,8 +3,8 @@
 #include <Eigen/Dense>
 #include <random>
 
-#include "bake/BasisRegistry.h"
-#include "bake/NonNegativeProjection.h"
+#include "basis/BasisRegistry.h"
+#include "basis/NonNegativeProjection.h"
 
 namespace baker {
 namespace {

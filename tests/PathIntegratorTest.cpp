@@ -2,8 +2,8 @@
 
 #include <vector>
 
-#include "bake/DirectionSet.h"
 #include "bake/PathIntegrator.h"
+#include "basis/DirectionSet.h"
 #include "scene/GltfLoader.h"
 #include "scene/RayTracer.h"
 #include "tests/TestData.h"

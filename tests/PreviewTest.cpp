@@ -5,9 +5,9 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "bake/BasisRegistry.h"
-#include "formats/RgbImage.h"
+#include "basis/BasisRegistry.h"
 #include "formats/VdbWriter.h"
+#include "images/RgbImage.h"
 #include "tests/GltfTestAssets.h"
 #include "tests/SyntheticVolumes.h"
 #include "tests/TestData.h"

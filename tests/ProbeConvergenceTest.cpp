@@ -6,8 +6,8 @@
 
 #include "bake/ProbeBaker.h"
 #include "bake/ProbeConvergence.h"
-#include "bake/ShBasis.h"
 #include "bake/TransportPlan.h"
+#include "basis/ShBasis.h"
 #include "formats/VolumeSampler.h"
 #include "scene/GltfLoader.h"
 #include "scene/RayTracer.h"

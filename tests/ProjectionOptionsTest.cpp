@@ -1,10 +1,11 @@
 #include <gtest/gtest.h>
 
 #include "bake/Baker.h"
-#include "bake/BasisRegistry.h"
+#include "basis/BasisRegistry.h"
 #include "scene/GltfLoader.h"
 #include "scene/RayTracer.h"
 #include "tests/TestData.h"
+#include "tests/TransportTestSupport.h"
 
 namespace baker {
 namespace {
@@ -12,17 +13,15 @@ namespace {
 class ProjectionOptionsTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    scene_ = std::make_unique<Scene>(loadGltf(test::sourcePath("data/default_room/default_room.gltf")));
-    tracer_ = std::make_unique<RayTracer>(*scene_);
-    grid_ = makeProbeGrid(scene_->bounds, 1.0, 1000);
+    room_ = std::make_unique<test::TracedScene>(loadGltf(test::sourcePath("data/default_room/default_room.gltf")));
+    grid_ = makeProbeGrid(room_->scene().bounds, 1.0, 1000);
   }
   Volume bake(const std::string& basisName, const ProjectionOptions& options) {
     BakeSettings settings;
     settings.projection = options;
-    return bakeVolume(*scene_, *tracer_, *makeBasis(basisName), grid_, settings, nullptr);
+    return bakeVolume(room_->scene(), room_->tracer(), *makeBasis(basisName), grid_, settings, nullptr);
   }
-  std::unique_ptr<Scene> scene_;
-  std::unique_ptr<RayTracer> tracer_;
+  std::unique_ptr<test::TracedScene> room_;
   ProbeGrid grid_;
 };
 

@@ -3,9 +3,9 @@
 #include <Eigen/Geometry>
 #include <random>
 
-#include "bake/DirectionSet.h"
-#include "bake/ProjectionOperator.h"
-#include "bake/SphericalHarmonics.h"
+#include "basis/DirectionSet.h"
+#include "basis/ProjectionOperator.h"
+#include "basis/SphericalHarmonics.h"
 #include "common/Error.h"
 
 namespace baker {

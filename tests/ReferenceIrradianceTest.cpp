@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "bake/ProbeBaker.h"
-#include "bake/ShBasis.h"
 #include "bake/TransportPlan.h"
+#include "basis/ShBasis.h"
 #include "scene/GltfLoader.h"
 #include "scene/RayTracer.h"
 #include "scene/SceneCensus.h"

@@ -157,14 +157,14 @@ TEST(SceneEnvironment, OptionsReadAMapSanitiseItAndRefuseBadValues) {
   };
   SceneOptions both = options;
   both.sky = "1,1,1";
-  rejects(both, "--env and --sky");
+  rejects(both, "sky and an environment map both describe the environment");
   SceneOptions nanIntensity = options;
   nanIntensity.environmentIntensity = std::nan("");
-  rejects(nanIntensity, "--env-intensity");
+  rejects(nanIntensity, "env_intensity must be a finite non-negative number");
   for (const char* sky : {"1,2", "1,2,3,4", "1,-2,3", "1,x,3", "1,2,", "nan,1,1"}) {
     SceneOptions bad;
     bad.sky = sky;
-    rejects(bad, "--sky must be three finite non-negative numbers");
+    rejects(bad, "sky must be three finite non-negative numbers");
   }
   SceneOptions good;
   good.sky = "0.5,1,2";

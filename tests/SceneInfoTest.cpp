@@ -57,7 +57,7 @@ TEST(SceneInfo, DescribesAGeneratedScene) {
   for (const char* effect : {"emission", "punctual_lights", "emissive_lights", "environment", "alpha_filters"})
     EXPECT_FALSE(p["effects"][effect]["simulated"]) << effect;
   EXPECT_TRUE(p["effects"]["bounces"]["simulated"]) << "the default material is white";
-  EXPECT_EQ(p["effects"]["environment"]["reason"], "no --env or --sky was given");
+  EXPECT_EQ(p["effects"]["environment"]["reason"], "no environment map or sky was given");
   EXPECT_EQ(p["environment"]["kind"], "none");
 
   // The text form runs too, with warnings on stderr.
@@ -110,7 +110,7 @@ TEST(SceneInfo, BakeAcceptsTheSceneOptions) {
   EXPECT_EQ(run.exitCode, 0) << run.err;
   const test::ProcessResult bad = test::runBaker(dir, "scene.gltf --scene 1 --out bad.vdb");
   EXPECT_EQ(bad.exitCode, 2);
-  EXPECT_NE(bad.err.find("--scene 1: the file has 1 scene(s)"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("--scene 1: scene.gltf: the file has 1 scene(s)"), std::string::npos) << bad.err;
 }
 
 }  // namespace

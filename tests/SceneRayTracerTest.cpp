@@ -5,6 +5,7 @@
 #include <random>
 
 #include "scene/GltfLoader.h"
+#include "scene/RayRecorder.h"
 #include "scene/RayTracer.h"
 #include "tests/GltfTestAssets.h"
 #include "tests/TestData.h"
@@ -147,7 +148,8 @@ TEST_F(SceneRayTracer, OpaqueScenesCarryNoFilters) {
 TEST_F(SceneRayTracer, RecordingAndTimingTracesChangeNoResult) {
   GltfBuilder gltf;
   const Scene scene = maskedScene(gltf, dir_);
-  RayTracer tracer(scene);
+  RayRecorder recorder;
+  const RayTracer tracer(scene, true, &recorder);
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> u(-1.0f, 1.0f);
   std::vector<Ray> rays(21);
@@ -168,13 +170,13 @@ TEST_F(SceneRayTracer, RecordingAndTimingTracesChangeNoResult) {
   std::vector<char> plainBlocked, watchedBlocked;
   traceAll(&plainHits, &plainBlocked);
 
-  RayTracer::RayLog log;
+  RayLog log;
   double seconds = 0.0;
-  tracer.record(&log);
-  tracer.timeEmbreeCalls(&seconds);
+  recorder.record(&log);
+  recorder.timeEmbreeCalls(&seconds);
   traceAll(&watchedHits, &watchedBlocked);
-  tracer.record(nullptr);
-  tracer.timeEmbreeCalls(nullptr);
+  recorder.record(nullptr);
+  recorder.timeEmbreeCalls(nullptr);
 
   int hitCount = 0;
   for (std::size_t k = 0; k < rays.size(); ++k) {

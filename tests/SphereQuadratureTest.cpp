@@ -2,9 +2,9 @@
 
 #include <Eigen/Dense>
 
-#include "bake/GramOperators.h"
-#include "bake/SphereQuadrature.h"
-#include "bake/SphericalHarmonics.h"
+#include "basis/GramOperators.h"
+#include "basis/SphereQuadrature.h"
+#include "basis/SphericalHarmonics.h"
 
 namespace baker {
 namespace {

@@ -3,11 +3,11 @@
 #include <cmath>
 #include <random>
 
-#include "bake/BasisRegistry.h"
-#include "bake/DirectionSet.h"
-#include "bake/ProjectionOperator.h"
-#include "bake/Quadrature.h"
-#include "bake/SphericalGaussianBasis.h"
+#include "basis/BasisRegistry.h"
+#include "basis/DirectionSet.h"
+#include "basis/ProjectionOperator.h"
+#include "basis/Quadrature.h"
+#include "basis/SphericalGaussianBasis.h"
 #include "common/Error.h"
 
 namespace baker {

@@ -2,8 +2,8 @@
 
 #include <Eigen/Dense>
 
-#include "bake/Quadrature.h"
-#include "bake/SphericalHarmonics.h"
+#include "basis/Quadrature.h"
+#include "basis/SphericalHarmonics.h"
 
 namespace baker {
 namespace {

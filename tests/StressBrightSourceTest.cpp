@@ -9,9 +9,9 @@
 #include <cmath>
 #include <iostream>
 
-#include "bake/BasisRegistry.h"
-#include "bake/NonNegativeProjection.h"
-#include "bake/DirectionSet.h"
+#include "basis/BasisRegistry.h"
+#include "basis/DirectionSet.h"
+#include "basis/NonNegativeProjection.h"
 #include "scene/RayTracer.h"
 #include "tests/TransportTestSupport.h"
 
@@ -53,18 +53,18 @@ Ringing ringingOf(const Basis& basis, const std::vector<float>& coefficients) {
 class StressBrightSource : public ::testing::TestWithParam<std::string> {
  protected:
   void SetUp() override {
-    scene_.environment = skyWithOneHotTexel();
-    tracer_ = std::make_unique<RayTracer>(scene_);
+    Scene scene;
+    scene.environment = skyWithOneHotTexel();
+    sky_ = std::make_unique<test::TracedScene>(std::move(scene));
     basis_ = makeBasis(GetParam());
   }
   Ringing bake(const ProjectionOptions& projection) {
     BakeSettings settings;
     settings.rays = kRays;
     settings.projection = projection;
-    return ringingOf(*basis_, test::bakeProbe(scene_, *tracer_, *basis_, settings, Eigen::Vector3f::Zero()).coefficients);
+    return ringingOf(*basis_, test::bakeProbe(sky_->scene(), sky_->tracer(), *basis_, settings, Eigen::Vector3f::Zero()).coefficients);
   }
-  Scene scene_;
-  std::unique_ptr<RayTracer> tracer_;
+  std::unique_ptr<test::TracedScene> sky_;
   std::unique_ptr<Basis> basis_;
 };
 

@@ -8,11 +8,11 @@
 #include <cmath>
 #include <filesystem>
 
-#include "bake/BasisRegistry.h"
-#include "bake/GramOperators.h"
-#include "bake/ProjectionOperator.h"
-#include "bake/SphericalGaussianBasis.h"
-#include "bake/SphericalHarmonics.h"
+#include "basis/BasisRegistry.h"
+#include "basis/GramOperators.h"
+#include "basis/ProjectionOperator.h"
+#include "basis/SphericalGaussianBasis.h"
+#include "basis/SphericalHarmonics.h"
 #include "common/Error.h"
 #include "scene/RayTracer.h"
 #include "tests/GltfTestAssets.h"
@@ -39,7 +39,7 @@ TEST(StressConditioning, SgLobesTooSharpToIntegrateAreRefused) {
     const auto basis = makeBasis("sg-64", sharpness);
     const std::string message = refusalOf(basis->functions(0), basis->name());
     EXPECT_NE(message.find("too sharp to integrate exactly"), std::string::npos) << message;
-    EXPECT_NE(message.find(fmt::format("--sg-sharpness {}", sharpness)), std::string::npos) << message;
+    EXPECT_NE(message.find(fmt::format("with sharpness {}", sharpness)), std::string::npos) << message;
     EXPECT_NE(message.find("refuses such a basis rather than regularising it"), std::string::npos) << message;
   }
 }

@@ -9,7 +9,7 @@
 #include <filesystem>
 
 #include "bake/Baker.h"
-#include "bake/BasisRegistry.h"
+#include "basis/BasisRegistry.h"
 #include "scene/GltfLoader.h"
 #include "scene/RayTracer.h"
 #include "tests/GltfTestAssets.h"

@@ -9,13 +9,13 @@
 #include <nlohmann/json.hpp>
 
 #include "bake/Baker.h"
-#include "bake/BasisRegistry.h"
-#include "bake/MemoryEstimate.h"
+#include "basis/BasisRegistry.h"
 #include "common/Error.h"
 #include "formats/VolumeReader.h"
 #include "scene/RayTracer.h"
 #include "tests/GltfTestAssets.h"
 #include "tests/TestData.h"
+#include "volume/MemoryEstimate.h"
 
 namespace baker {
 namespace {

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <limits>
 
-#include "bake/BasisRegistry.h"
+#include "basis/BasisRegistry.h"
 #include "common/Error.h"
 #include "scene/GltfLoader.h"
 #include "scene/RayTracer.h"
@@ -153,7 +153,7 @@ TEST_F(StressInputValues, EnvironmentMapsAreSanitisedOrRefused) {
   const test::ProcessResult overflow =
       test::runBaker(dir_, room + " --env bright.exr --env-intensity 10 --out no.vdb");
   EXPECT_EQ(overflow.exitCode, 2);
-  EXPECT_NE(overflow.err.find("bright.exr: texel (10, 0) times --env-intensity 10 is beyond single precision"),
+  EXPECT_NE(overflow.err.find("--env-intensity 10 takes texel (10, 0) of bright.exr beyond single precision"),
             std::string::npos)
       << overflow.err;
   EXPECT_FALSE(std::filesystem::exists(dir_ + "/no.vdb"));

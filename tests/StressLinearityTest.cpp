@@ -11,8 +11,8 @@
 #include <nlohmann/json.hpp>
 
 #include "bake/Baker.h"
-#include "bake/BasisRegistry.h"
-#include "bake/ShBasis.h"
+#include "basis/BasisRegistry.h"
+#include "basis/ShBasis.h"
 #include "scene/GltfLoader.h"
 #include "scene/RayTracer.h"
 #include "tests/GltfTestAssets.h"

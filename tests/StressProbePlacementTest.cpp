@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "bake/Baker.h"
-#include "bake/BasisRegistry.h"
+#include "basis/BasisRegistry.h"
 #include "scene/GltfLoader.h"
 #include "scene/RayTracer.h"
 #include "tests/TestData.h"
@@ -23,8 +23,7 @@ class StressProbePlacement : public ::testing::Test {
   void SetUp() override {
     SceneOptions options;
     options.sky = "4,4,4";
-    scene_ = std::make_unique<Scene>(loadGltf(test::sourcePath("data/default_room/default_room.gltf"), options));
-    tracer_ = std::make_unique<RayTracer>(*scene_);
+    room_ = std::make_unique<test::TracedScene>(loadGltf(test::sourcePath("data/default_room/default_room.gltf"), options));
     basis_ = makeBasis("sh-l2");
     settings_.rays = 512;
     settings_.transport.bounces = 1;
@@ -36,13 +35,13 @@ class StressProbePlacement : public ::testing::Test {
     grid.dims = dims;
     grid.origin = first;
     grid.spacing = spacing;
-    return bakeVolume(*scene_, *tracer_, *basis_, grid, settings_, nullptr);
+    return bakeVolume(room_->scene(), room_->tracer(), *basis_, grid, settings_, nullptr);
   }
 
   // Rays of a probe at `position` that head into `side` (by more than 0.1 of their length)
   // and escape to the sky.
   int escapingTowards(const Eigen::Vector3f& position, const Eigen::Vector3f& side) const {
-    const test::BakedProbe probe = test::bakeProbe(*scene_, *tracer_, *basis_, settings_, position);
+    const test::BakedProbe probe = test::bakeProbe(room_->scene(), room_->tracer(), *basis_, settings_, position);
     int escaping = 0;
     for (std::size_t r = 0; r < probe.samples.directions.size(); ++r)
       escaping += probe.samples.directions[r].dot(side) > 0.1f && probe.samples.visibility[r] > 0.0f;
@@ -66,8 +65,7 @@ class StressProbePlacement : public ::testing::Test {
       EXPECT_LT((a[k] - b[k]).cwiseAbs().maxCoeff(), 0.1f * largest) << "axis normal " << k;
   }
 
-  std::unique_ptr<Scene> scene_;
-  std::unique_ptr<RayTracer> tracer_;
+  std::unique_ptr<test::TracedScene> room_;
   std::unique_ptr<Basis> basis_;
   BakeSettings settings_;
 };

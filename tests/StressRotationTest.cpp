@@ -9,9 +9,9 @@
 #include <filesystem>
 #include <iostream>
 
-#include "bake/BasisRegistry.h"
-#include "bake/DirectionSet.h"
-#include "formats/RgbImage.h"
+#include "basis/BasisRegistry.h"
+#include "basis/DirectionSet.h"
+#include "images/RgbImage.h"
 #include "scene/GltfLoader.h"
 #include "scene/RayTracer.h"
 #include "tests/GltfTestAssets.h"

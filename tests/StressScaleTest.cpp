@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bake/Baker.h"
-#include "bake/BasisRegistry.h"
+#include "basis/BasisRegistry.h"
 #include "scene/GltfLoader.h"
 #include "scene/RayTracer.h"
 #include "tests/TestData.h"

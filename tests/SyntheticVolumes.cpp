@@ -5,7 +5,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "bake/BasisRegistry.h"
+#include "basis/BasisRegistry.h"
 
 namespace baker::test {
 

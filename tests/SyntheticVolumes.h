@@ -3,8 +3,8 @@
 #include <string>
 #include <vector>
 
-#include "bake/Volume.h"
-#include "formats/RgbImage.h"
+#include "images/RgbImage.h"
+#include "volume/Volume.h"
 
 namespace baker::test {
 

@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 #include "bake/Baker.h"
-#include "bake/BasisRegistry.h"
+#include "basis/BasisRegistry.h"
 #include "scene/GltfLoader.h"
 #include "scene/RayTracer.h"
 #include "tests/OnThreads.h"

@@ -9,13 +9,13 @@
 #include <set>
 #include <sstream>
 
-#include "bake/BasisRegistry.h"
-#include "formats/IrradianceError.h"
-#include "formats/ReferencePanoramas.h"
+#include "basis/BasisRegistry.h"
 #include "formats/VdbWriter.h"
 #include "tests/GltfTestAssets.h"
 #include "tests/SyntheticVolumes.h"
 #include "tests/TestData.h"
+#include "validate/IrradianceError.h"
+#include "validate/ReferencePanoramas.h"
 
 // `baker validate`: volumes against volumes and against reference panoramas, in reconstructed
 // irradiance, with the exit codes, JSON report and JUnit XML a CI job relies on.

@@ -6,7 +6,7 @@
 #include <random>
 
 #include "bake/Baker.h"
-#include "bake/BasisRegistry.h"
+#include "basis/BasisRegistry.h"
 #include "formats/VdbWriter.h"
 #include "formats/VolumeReader.h"
 #include "scene/GltfLoader.h"

@@ -1,0 +1,91 @@
+#include "bake/BakeJob.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <filesystem>
+
+#include "bake/ProbeConvergence.h"
+#include "bake/TransportPlan.h"
+#include "basis/BasisRegistry.h"
+#include "common/FileHash.h"
+#include "common/Timing.h"
+#include "scene/GltfLoader.h"
+#include "scene/SceneCensus.h"
+
+namespace baker {
+namespace {
+
+BakeSettings bakeSettings(const BakeRequest& request, std::vector<PlannedEffect>& plan) {
+  BakeSettings settings;
+  settings.rays = request.rays;
+  if (const QualityPreset* preset = request.quality.empty() ? nullptr : findQualityPreset(request.quality)) {
+    settings.rays = preset->rays;
+    settings.convergence = preset->convergence;
+  }
+  settings.projection.window = request.window;
+  settings.projection.nonNegative = request.nonNegative;
+  settings.transport = transportSettings(plan, request.bounces, request.seed);
+  return settings;
+}
+
+// What made the volume, as its file records it (docs/FORMAT.md, "settings").
+void recordSettings(const BakeJob& job, Volume& volume) {
+  const BakeRequest& request = job.request();
+  const BakeSettings& settings = job.settings();
+  const ConvergenceSettings& convergence = settings.convergence;
+  volume.settings["rays"] = std::to_string(settings.rays);
+  volume.settings["quality"] = qualityName(request);
+  if (convergence.adaptive()) {
+    volume.settings["target_error"] = fmt::format("{}", convergence.targetError);
+    volume.settings["min_rays"] = std::to_string(raysAfterRounds(settings.rays, convergence.minRounds));
+    volume.settings["max_rays"] = std::to_string(raysAfterRounds(settings.rays, convergence.maxRounds));
+  }
+  volume.settings["bounces"] = std::to_string(settings.transport.bounces);
+  volume.settings["seed"] = std::to_string(request.seed);
+  volume.settings["sampler"] = ProbeBaker::samplerName(settings);
+  for (const PlannedEffect& e : job.plan()) volume.settings["effect." + e.name] = e.simulated ? "on" : "off";
+  volume.settings["window"] = std::to_string(request.window.hannWidth);
+  volume.settings["non_negative"] = request.nonNegative ? "true" : "false";
+  for (const auto& [key, value] : job.basis().parameters()) volume.settings[key] = fmt::format("{}", value);
+  volume.settings["scene"] = std::filesystem::path(request.scenePath).filename().string();
+  volume.settings["scene_fnv1a64"] = fileHash(request.scenePath);
+}
+
+}  // namespace
+
+BakeJob::BakeJob(BakeRequest request, RayObserver* observer) : request_(std::move(request)) {
+  validateBakeRequest(request_);
+  basis_ = makeBasis(request_.basis, request_.sgSharpness);
+  if (request_.threads > 0)
+    threadLimit_ = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, request_.threads);
+  const auto start = std::chrono::steady_clock::now();
+  scene_ = std::make_unique<Scene>(loadGltf(request_.scenePath, request_.scene));
+  loadSeconds_ = secondsSince(start);
+  grid_ = makeProbeGrid(scene_->bounds, request_.spacing.value_or(0.0), kMaxBakeProbes);
+  plan_ = planEffects(*scene_, takeCensus(*scene_));
+  turnOffEffects(plan_, request_.turnedOff);
+  settings_ = bakeSettings(request_, plan_);
+  const auto bvhStart = std::chrono::steady_clock::now();
+  tracer_ = std::make_unique<RayTracer>(*scene_, settings_.transport.alphaFilters, observer);
+  bvhSeconds_ = secondsSince(bvhStart);
+}
+
+BakeJob::~BakeJob() = default;
+
+std::int64_t BakeJob::rayLimit() const {
+  return settings_.convergence.adaptive() ? raysAfterRounds(settings_.rays, settings_.convergence.maxRounds)
+                                          : std::int64_t(settings_.rays);
+}
+
+Volume BakeJob::bake(BakeStats* stats, const std::function<void(std::int64_t, std::int64_t)>& progress) const {
+  Volume volume = bakeVolume(*scene_, *tracer_, *basis_, grid_, settings_, stats, progress);
+  recordSettings(*this, volume);
+  return volume;
+}
+
+BakedProbes BakeJob::probesAt(const std::vector<Eigen::Vector3f>& positions) const {
+  return bakeProbesAt(*scene_, *tracer_, *basis_, settings_, grid_.spacing, positions);
+}
+
+}  // namespace baker

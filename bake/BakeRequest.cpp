@@ -1,0 +1,38 @@
+#include "bake/BakeRequest.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "bake/ProbeConvergence.h"
+#include "bake/TransportPlan.h"
+#include "basis/BasisRegistry.h"
+#include "common/Error.h"
+
+namespace baker {
+
+void validateBakeRequest(const BakeRequest& r) {
+  if (r.spacing && !(*r.spacing > 0.0 && std::isfinite(*r.spacing)))
+    throw SettingError("spacing", fmt::format("must be a positive number of metres, got {}", *r.spacing));
+  if (r.quality.empty() && (r.rays <= 0 || r.rays > kMaxRaysPerProbe))
+    throw SettingError("rays", fmt::format("must be in 1..{}, got {}", kMaxRaysPerProbe, r.rays));
+  if (!r.quality.empty() && !findQualityPreset(r.quality))
+    throw SettingError("quality", fmt::format("must be one of {}, got '{}'", qualityPresetNames(), r.quality));
+  if (r.bounces < 0 || r.bounces > kMaxBounces)
+    throw SettingError("bounces", fmt::format("must be in 0..{}, got {}", kMaxBounces, r.bounces));
+  if (r.threads < 0) throw SettingError("threads", fmt::format("must be positive, got {}", r.threads));
+  if (r.window.hannWidth < 0)
+    throw SettingError("window", fmt::format("must be a band count >= 1, got {}", r.window.hannWidth));
+  requireKnownEffects(r.turnedOff);
+  const std::unique_ptr<Basis> basis = makeBasis(r.basis, r.sgSharpness);
+  if (r.nonNegative && !admitsNonNegativeFit(*basis))
+    throw SettingError("non_negative",
+                       fmt::format("does not apply to {}: its functions change sign, so coefficients >= 0 do not make "
+                                   "the reconstruction non-negative (and can make its ringing worse); bases it "
+                                   "applies to: {}",
+                                   r.basis, fmt::join(nonNegativeBasisNames(), ", ")));
+}
+
+std::string qualityName(const BakeRequest& request) { return request.quality.empty() ? "fixed" : request.quality; }
+
+}  // namespace baker

@@ -1,0 +1,47 @@
+#include "bake/ProbesAt.h"
+
+#include <cmath>
+
+#include "common/Error.h"
+
+namespace baker {
+
+std::vector<ProbePlacement> placeProbes(const RayTracer& tracer, const TransportSettings& transport, double spacing,
+                                        const std::vector<Eigen::Vector3f>& positions, std::int64_t* validityRays) {
+  std::vector<ProbePlacement> placements(positions.size());
+  if (!transport.probeValidity) return placements;
+  const ValidityOptions options;
+  const std::vector<Eigen::Vector3f> testDirections = validityDirections(options);
+  for (std::size_t i = 0; i < positions.size(); ++i)
+    placements[i] = placeProbe(tracer, positions[i], float(spacing), testDirections, options, validityRays);
+  return placements;
+}
+
+BakedProbes bakeTasks(const Scene& scene, const RayTracer& tracer, const Basis& basis, const BakeSettings& settings,
+                      std::vector<ProbeTask> tasks) {
+  const ProbeBaker probeBaker(scene, tracer, basis, settings, 1);
+  BakedProbes baked;
+  baked.tasks = std::move(tasks);
+  baked.coefficientsPerProbe = probeBaker.coefficientsPerProbe();
+  baked.visibilityPerProbe = probeBaker.visibilityPerProbe();
+  baked.coefficients.resize(baked.tasks.size() * baked.coefficientsPerProbe);
+  baked.visibility.resize(baked.tasks.size() * baked.visibilityPerProbe);
+  probeBaker.bake(baked.tasks, baked.coefficients.data(), baked.visibility.data(), &baked.rays, &baked.samples);
+  for (float c : baked.coefficients)
+    if (!std::isfinite(c)) throw NumericalError("a probe's coefficients are not finite: the scene's radiance overflows float");
+  return baked;
+}
+
+BakedProbes bakeProbesAt(const Scene& scene, const RayTracer& tracer, const Basis& basis, const BakeSettings& settings,
+                         double spacing, const std::vector<Eigen::Vector3f>& positions) {
+  std::int64_t validityRays = 0;
+  std::vector<ProbePlacement> placements = placeProbes(tracer, settings.transport, spacing, positions, &validityRays);
+  std::vector<ProbeTask> tasks;
+  for (std::size_t i = 0; i < positions.size(); ++i) tasks.push_back({positions[i] + placements[i].offset, i, 0});
+  BakedProbes baked = bakeTasks(scene, tracer, basis, settings, std::move(tasks));
+  baked.placements = std::move(placements);
+  baked.rays.validity += validityRays;
+  return baked;
+}
+
+}  // namespace baker

@@ -1,0 +1,46 @@
+#pragma once
+#include <Eigen/Core>
+#include <map>
+#include <string>
+
+#include "basis/SphericalFunctions.h"
+
+namespace baker {
+
+enum class ColorSpace { Rgb, YCoCg };
+
+const char* colorSpaceName(ColorSpace space);
+// Names of the three channels in that colour space, e.g. {"Y", "Co", "Cg"}.
+const char* channelName(ColorSpace space, int channel);
+Eigen::Vector3f toColorSpace(ColorSpace space, const Eigen::Vector3f& rgb);
+Eigen::Vector3f toRgb(ColorSpace space, const Eigen::Vector3f& color);
+
+// A representation of RGB signals on the sphere. Each of the three channels of the basis's
+// colour space is expanded in its own set of functions (channels may share one set), so a
+// probe stores, channel after channel, coefficientCount(c) numbers per channel c.
+class Basis {
+ public:
+  virtual ~Basis() = default;
+  virtual std::string name() const = 0;
+  // What a reader dispatches on: "sh", "ambient-dice", "ambient-cube", "spherical-gaussians".
+  virtual std::string family() const = 0;
+  // Values that the name leaves open, as a volume's settings record them (e.g. sg_sharpness).
+  virtual std::map<std::string, double> parameters() const { return {}; }
+  virtual ColorSpace colorSpace() const { return ColorSpace::Rgb; }
+  virtual const SphericalFunctions& functions(int channel) const = 0;
+  // How many stored coefficients (all channels) reconstructing one direction reads.
+  virtual int coefficientsPerLookup() const = 0;
+
+  // The signal (in RGB) in direction `d` from one probe's coefficients, laid out as
+  // described above. The default evaluates every function; bases with local support
+  // override it to read only coefficientsPerLookup() values.
+  virtual Eigen::Vector3f reconstruct(const float* coefficients, const Eigen::Vector3d& d) const;
+
+  int coefficientCount(int channel) const { return functions(channel).count(); }
+  int coefficientOffset(int channel) const;
+  int totalCoefficients() const { return coefficientOffset(3); }
+  // True when R, G and B (or Y, Co, Cg) use one and the same function set.
+  bool channelsShareFunctions() const;
+};
+
+}  // namespace baker

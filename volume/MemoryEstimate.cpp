@@ -1,0 +1,38 @@
+#include "volume/MemoryEstimate.h"
+
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <limits>
+
+#include "common/Error.h"
+#include "volume/ProbeState.h"
+
+namespace baker {
+
+double volumeMemoryBytes(const ProbeGrid& grid, const Basis& basis) {
+  const double values = double(basis.totalCoefficients()) + double(basis.functions(0).count());
+  const double perProbe = values * sizeof(float) + sizeof(ProbeState) + sizeof(Eigen::Vector3f);
+  const double probes = double(grid.dims.x()) * double(grid.dims.y()) * double(grid.dims.z());
+  return 2.0 * probes * perProbe;
+}
+
+std::uint64_t physicalMemoryBytes() {
+  const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
+  // A system that does not say sets no limit here; the allocation itself will tell.
+  if (pages <= 0 || pageSize <= 0) return std::numeric_limits<std::uint64_t>::max();
+  return std::uint64_t(pages) * std::uint64_t(pageSize);
+}
+
+void requireVolumeFitsInMemory(const ProbeGrid& grid, const Basis& basis, std::uint64_t availableBytes) {
+  const double needed = volumeMemoryBytes(grid, basis);
+  if (needed <= double(availableBytes)) return;
+  throw SettingError("spacing",
+                    fmt::format(": a grid of {} × {} × {} probes in {} needs about {:.0f} bytes ({:.3g} GiB: the volume, "
+                               "and as much again while it is written), more than this machine's {} bytes of "
+                               "memory; nothing was traced (raise the spacing)",
+                               grid.dims.x(), grid.dims.y(), grid.dims.z(), basis.name(), needed,
+                               needed / double(1ull << 30), availableBytes));
+}
+
+}  // namespace baker

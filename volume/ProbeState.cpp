@@ -1,0 +1,14 @@
+#include "volume/ProbeState.h"
+
+namespace baker {
+
+const char* probeStateName(ProbeState state) {
+  switch (state) {
+    case ProbeState::Valid: return "valid";
+    case ProbeState::Relocated: return "relocated";
+    case ProbeState::Invalid: return "invalid";
+  }
+  return "unknown";
+}
+
+}  // namespace baker

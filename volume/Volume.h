@@ -1,0 +1,33 @@
+#pragma once
+#include <Eigen/Core>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "volume/ProbeGrid.h"
+#include "volume/ProbeState.h"
+
+namespace baker {
+
+// A baked irradiance volume: per probe, the basis coefficients of the irradiance E(n) it receives,
+// laid out as Basis describes (channel after channel), and of its sky visibility. Probe
+// p = i + nx·(j + ny·k).
+struct Volume {
+  ProbeGrid grid;
+  std::string basisName;
+  int coefficientsPerProbe = 0;
+  std::vector<float> coefficients;
+  // Sky visibility V(n) = (1/π) ∫ V(ω) max(0, n·ω) dω in channel 0's functions: 1 under open sky.
+  int visibilityPerProbe = 0;
+  std::vector<float> visibility;
+  // Per probe: whether it was baked where the grid puts it, moved out of geometry by `offsets`
+  // (world units), or found inside geometry and filled from its neighbours.
+  std::vector<ProbeState> states;
+  std::vector<Eigen::Vector3f> offsets;
+  // What produced it (rays, scene file, ...): written to the file's metadata as it is.
+  std::map<std::string, std::string> settings;
+
+  const float* probe(std::int64_t index) const { return coefficients.data() + index * coefficientsPerProbe; }
+};
+
+}  // namespace baker
