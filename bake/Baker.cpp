@@ -24,8 +24,9 @@ int rotationOf(int i, int j, int k) { return (i & 1) + 2 * (j & 1) + 4 * (k & 1)
 // The probes of brick `brick`: placed (moved out of geometry, or marked invalid) and traced,
 // their coefficients and sky visibility written into `volume`.
 void bakeBrick(const RayTracer& tracer, const ProbeGrid& grid, const BakeSettings& settings,
-               const ProbeBaker& probeBaker, const Eigen::Vector3i& brick, Volume& volume, RayCounts& counts,
-               RoundTally& tally, std::vector<float>& coefficients, std::vector<float>& visibility) {
+               const ProbeBaker& probeBaker, const std::vector<Eigen::Vector3f>& testDirections,
+               const Eigen::Vector3i& brick, Volume& volume, RayCounts& counts, RoundTally& tally,
+               std::vector<float>& coefficients, std::vector<float>& visibility) {
   const Eigen::Vector3i lo = brick * kBrickSize;
   const Eigen::Vector3i hi = (lo.array() + kBrickSize).min(grid.dims.array());
   std::vector<ProbeTask> candidates;
@@ -36,7 +37,6 @@ void bakeBrick(const RayTracer& tracer, const ProbeGrid& grid, const BakeSetting
                               rotationOf(i, j, k)});
   if (settings.transport.probeValidity) {
     const ValidityOptions validityOptions;
-    const std::vector<Eigen::Vector3f> testDirections = validityDirections(validityOptions);
     // Placed side by side like the probes' tracing (ProbeBaker::bake). Isolated so that a
     // waiting thread does not start a brick of its own inside this one.
     std::vector<std::int64_t> validityRays(candidates.size(), 0);
@@ -104,6 +104,7 @@ Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basi
   const ProbeBaker probeBaker(scene, tracer, basis, settings, kRotations);
   const auto operatorsBuilt = std::chrono::steady_clock::now();
   Volume volume = emptyVolume(grid, basis, probeBaker);
+  const std::vector<Eigen::Vector3f> testDirections = validityDirections(ValidityOptions{});
 
   const Eigen::Vector3i bricks = grid.brickCounts();
   const int brickCount = bricks.x() * bricks.y() * bricks.z();
@@ -114,8 +115,8 @@ Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basi
     std::vector<float> coefficients, visibility;
     for (int b = range.begin(); b < range.end(); ++b) {
       const Eigen::Vector3i brick(b % bricks.x(), (b / bricks.x()) % bricks.y(), b / (bricks.x() * bricks.y()));
-      bakeBrick(tracer, grid, settings, probeBaker, brick, volume, brickRays[b], brickTallies[b], coefficients,
-                visibility);
+      bakeBrick(tracer, grid, settings, probeBaker, testDirections, brick, volume, brickRays[b], brickTallies[b],
+                coefficients, visibility);
       if (progress) progress(++bricksDone, brickCount);
     }
   });

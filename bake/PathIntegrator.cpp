@@ -104,13 +104,13 @@ struct PathIntegrator::Vertex {
   PathRandom random{0, 0, 0};
 };
 
-// Per-thread arrays reused from probe to probe: a bake traces millions of short wavefronts.
 struct PathIntegrator::Aimed {  // a vertex's ray aimed near a light
   int path;
   int light;
   Eigen::Vector3f throughput;  // to the aimed ray's first hit, with the aim's MIS share
 };
 
+// Per-thread arrays reused from probe to probe: a bake traces millions of short wavefronts.
 struct PathIntegrator::Scratch {
   struct Pending {  // what a shadow ray adds to its path's radiance if nothing blocks it
     int path;
@@ -239,8 +239,10 @@ struct PathIntegrator::ShadowBatch {
   Scratch::Pending* pending;
   int count = 0;
 
-  ShadowBatch(Scratch& scratch, std::size_t most)
-      : rays(scratch.rays.reserve(most)), pending(scratch.pending.reserve(most)) {}
+  // The rays go into `store`: scratch.rays, unless that holds the rays being shaded.
+  ShadowBatch(Scratch& scratch, std::size_t most) : ShadowBatch(scratch.rays, scratch, most) {}
+  ShadowBatch(ScratchBuffer<Ray>& store, Scratch& scratch, std::size_t most)
+      : rays(store.reserve(most)), pending(scratch.pending.reserve(most)) {}
   void resolve(const RayTracer& tracer, Scratch& scratch, Eigen::Vector3f* radiance, std::int64_t* counter) const {
     if (count == 0) return;
     bool* blocked = scratch.blocked.reserve(std::size_t(count));
@@ -435,9 +437,7 @@ void PathIntegrator::aimAtLights(Vertex* vertices, int count, Scratch& scratch, 
 
 void PathIntegrator::shadeAimedHits(const Ray* rays, const Aimed* aimed, int aimedRays, Scratch& scratch,
                                     Eigen::Vector3f* radiance, RayCounts* counts) const {
-  Ray* shadow = scratch.shadowRays.reserve(std::size_t(aimedRays));
-  Scratch::Pending* pending = scratch.pending.reserve(std::size_t(aimedRays));
-  int shadowRays = 0;
+  ShadowBatch batch(scratch.shadowRays, scratch, std::size_t(aimedRays));
   Hit hits[8];
   SurfacePoint surfaces[8];
   for (int first = 0; first < aimedRays; first += 8) {
@@ -468,16 +468,11 @@ void PathIntegrator::shadeAimedHits(const Ray* rays, const Aimed* aimed, int aim
       if (light.type == PunctualLight::Type::Spot) irradiance *= light.spotFalloff(-toLight.dot(light.direction));
       const Eigen::Vector3f contribution = a.throughput.cwiseProduct(albedo).cwiseProduct(irradiance) * (cosine * kInvPi);
       if (!(contribution.maxCoeff() > 0.0f) || !contribution.allFinite()) continue;
-      shadow[shadowRays] = {origin, toLight, 0.0f, distance};
-      pending[shadowRays++] = {a.path, contribution};
+      batch.rays[batch.count] = {origin, toLight, 0.0f, distance};
+      batch.pending[batch.count++] = {a.path, contribution};
     }
   }
-  if (shadowRays == 0) return;
-  bool* blocked = scratch.blocked.reserve(std::size_t(shadowRays));
-  tracer_.occluded(shadow, shadowRays, blocked);
-  for (int k = 0; k < shadowRays; ++k)
-    if (!blocked[k]) radiance[pending[k].path] += pending[k].contribution;
-  counts->aimedBounceShadow += shadowRays;
+  batch.resolve(tracer_, scratch, radiance, &counts->aimedBounceShadow);
 }
 
 int PathIntegrator::sampleContinuations(Vertex* vertices, int count, Ray* rays, float* bsdfPdf) const {

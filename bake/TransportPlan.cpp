@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "bake/BakeRequest.h"
 #include "common/Error.h"
@@ -45,7 +46,7 @@ void turnOffEffects(std::vector<PlannedEffect>& plan, const std::vector<std::str
   requireKnownEffects(names);
   for (const std::string& name : names) {
     PlannedEffect* e = find(plan, effectKey(name));
-    if (!e) continue;
+    if (!e) throw std::logic_error("effectKeys() names an effect planEffects() does not plan: " + name);
     if (e->simulated) e->reason = fmt::format("turned off on request ({})", e->reason);
     e->simulated = false;
   }

@@ -7,10 +7,10 @@
 
 namespace baker {
 
-// Turns off the effects the user named (`--no EFFECT`, with '-' or '_' in the key), saying so
-// in their reason. Throws InputError for a name that is not an effect, listing the keys.
 // SettingError "turned_off" for a name that is not an effect's key ('-' or '_' alike), listing the keys.
 void requireKnownEffects(const std::vector<std::string>& names);
+
+// Turns off the effects the request names (requireKnownEffects first), saying so in their reason.
 
 void turnOffEffects(std::vector<PlannedEffect>& plan, const std::vector<std::string>& names);
 

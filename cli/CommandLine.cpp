@@ -12,7 +12,6 @@ namespace baker {
 
 std::string flagOf(const std::string& setting) {
   if (setting == "turned_off") return "--no";
-  if (setting == "environment_map") return "--env";
   std::string flag = "--" + setting;
   std::replace(flag.begin(), flag.end(), '_', '-');
   return flag;

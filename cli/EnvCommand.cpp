@@ -10,7 +10,6 @@
 #include <nlohmann/json.hpp>
 
 #include "basis/BasisRegistry.h"
-#include "basis/SphericalGaussianBasis.h"
 #include "cli/CommandLine.h"
 #include "common/Error.h"
 #include "formats/AtomicFile.h"
@@ -68,12 +67,6 @@ std::vector<std::string> writeImages(const std::string& dir, const LatLongEnviro
   return paths;
 }
 
-// ", sg_sharpness 0.542": what the basis's name leaves open.
-std::string parameterText(const std::map<std::string, double>& parameters) {
-  std::string text;
-  for (const auto& [key, value] : parameters) text += fmt::format(", {} {:.4g}", key, value);
-  return text;
-}
 
 }  // namespace
 
@@ -142,7 +135,9 @@ int runEnvCommand(int argc, char** argv) {
       std::cout << fmt::format("basis   {} ({}, {} coefficients, {} per lookup{})\n", basis->name(),
                                colorSpaceName(basis->colorSpace()), basis->totalCoefficients(),
                                basis->coefficientsPerLookup(),
-                               parameterText(parameters));
+                               basis->functions(0).parameterText().empty()
+                                   ? std::string()
+                                   : ", " + basis->functions(0).parameterText());
       std::cout << "RMSE of irradiance/pi against the exact texel sum:\n";
       for (const IrradianceFit& fit : fits)
         std::cout << fmt::format("  {:<15} {:<10.6g} {}{}\n", fit.method, fit.rmse, fit.description,

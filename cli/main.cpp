@@ -80,8 +80,6 @@ int runHelp(int argc, char** argv) {
 int main(int argc, char** argv) {
   if (argc < 2 || std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0) return printOverview();
   if (std::strcmp(argv[1], "help") == 0) return runHelp(argc - 1, argv + 1);
-  if (const Command* command = findCommand(argv[1]); command && std::strcmp(command->name, "bake") != 0)
-    return command->run(argc - 1, argv + 1);
-  if (std::strcmp(argv[1], "bake") == 0) return baker::runBakeCommand(argc - 1, argv + 1);
+  if (const Command* command = findCommand(argv[1])) return command->run(argc - 1, argv + 1);
   return baker::runBakeCommand(argc, argv);
 }

@@ -42,7 +42,7 @@ void requireKnownFormatVersion(const std::vector<std::pair<std::string, std::str
 
 Volume VolumeHeader::emptyVolume(const std::string& path) const {
   requireKnownFormatVersion(text, path);
-  const std::unique_ptr<Basis> basis = makeBasis(basisName);
+  const std::unique_ptr<Basis> basis = basisInFile(basisName, std::nullopt, path);
   if (coefficientsPerProbe != basis->totalCoefficients())
     throw InputError(fmt::format("{}: baker.coefficients_per_probe is {}, but {} has {}", path, coefficientsPerProbe,
                                  basisName, basis->totalCoefficients()));
@@ -80,6 +80,15 @@ void requireFiniteValues(const Volume& v, const std::string& path) {
       throw InputError(fmt::format("{}: probe {} has a non-finite visibility value", path, i / v.visibilityPerProbe));
   for (const Eigen::Vector3f& o : v.offsets)
     if (!o.allFinite()) throw InputError(fmt::format("{}: a probe offset is not finite", path));
+}
+
+std::unique_ptr<Basis> basisInFile(const std::string& name, const std::optional<double>& sharpness,
+                                   const std::string& where) {
+  try {
+    return makeBasis(name, sharpness);
+  } catch (const SettingError& e) {
+    throw InputError(fmt::format("{}: {}", where, e.what()));
+  }
 }
 
 }  // namespace baker

@@ -1,8 +1,11 @@
 #pragma once
+#include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "basis/Basis.h"
 #include "volume/ProbeGrid.h"
 #include "volume/Volume.h"
 
@@ -24,5 +27,10 @@ struct VolumeHeader {
 
 // InputError naming `path` and the probe when a value read from a file is NaN or infinite.
 void requireFiniteValues(const Volume& volume, const std::string& path);
+
+// The basis a file names, or InputError naming `where` (the file, or its metadata key): a file's
+// basis is what the file says, not a setting of the command reading it.
+std::unique_ptr<Basis> basisInFile(const std::string& name, const std::optional<double>& sharpness,
+                                   const std::string& where);
 
 }  // namespace baker

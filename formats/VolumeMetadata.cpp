@@ -1,12 +1,7 @@
 #include "formats/VolumeMetadata.h"
 
-#include <fmt/format.h>
-
-#include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "common/Error.h"
-#include "common/Fnv1a64.h"
 #include "formats/ReconstructionData.h"
 #include "formats/VolumeLayout.h"
 

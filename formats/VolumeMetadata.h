@@ -21,5 +21,4 @@ constexpr int kVolumeFormatVersion = 3;
 // Recovers volume.settings from "baker.setting.*" keys.
 void readSettings(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume);
 
-
 }  // namespace baker

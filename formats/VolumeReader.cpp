@@ -4,10 +4,10 @@
 
 #include <filesystem>
 
-#include "basis/BasisRegistry.h"
 #include "common/Error.h"
 #include "formats/ExrSlices.h"
 #include "formats/VdbReader.h"
+#include "formats/VolumeHeader.h"
 
 namespace baker {
 
@@ -21,12 +21,16 @@ Volume readVolume(const std::string& path) {
 
 std::unique_ptr<Basis> basisOf(const Volume& volume) {
   const auto sharpness = volume.settings.find("sg_sharpness");
-  if (sharpness == volume.settings.end()) return makeBasis(volume.basisName);
+  if (sharpness == volume.settings.end()) return basisInFile(volume.basisName, std::nullopt, "baker.basis");
+  double value = 0.0;
   try {
-    return makeBasis(volume.basisName, std::stod(sharpness->second));
+    value = std::stod(sharpness->second);
   } catch (const std::logic_error&) {
     throw InputError(fmt::format("baker.setting.sg_sharpness \"{}\" is not a number", sharpness->second));
   }
+  // 0 was once written for "the measured default".
+  return basisInFile(volume.basisName, value == 0.0 ? std::nullopt : std::optional<double>(value),
+                     "baker.setting.sg_sharpness");
 }
 
 }  // namespace baker

@@ -40,7 +40,7 @@ class Environment {
   float rotationDegrees() const { return rotationDegrees_; }
   const Eigen::Vector3f& constantRadiance() const { return constant_; }
   std::size_t sanitizedTexels() const { return sanitized_; }
-  // One line for people: "none", "--sky r,g,b", or "--env FILE (W × H, intensity x, rotated y°)".
+  // One line for people: "none", "constant sky r,g,b", or "map FILE (W × H, intensity x, rotated y°)".
   std::string describe() const;
   // Whether any direction brings light (a black map or sky brings none and needs no sampling).
   bool emits() const { return kind_ == Kind::Map ? table_ != nullptr : luminance(constant_) > 0.0f; }

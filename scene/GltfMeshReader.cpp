@@ -84,7 +84,7 @@ void GltfMeshReader::readPrimitive(int meshIndex, int primitiveIndex, const Mesh
   mesh.positions.insert(mesh.positions.end(), positions.begin(), positions.end());
   const std::uint32_t material = materialOf(prim, path);
 
-  readTexcoordsAndColors(prim, path, vertexCount, material, mesh);
+  readTexcoordsAndColors(prim, path, base, vertexCount, material, mesh);
 
   const std::vector<std::uint32_t> indices = readIndices(prim, path, vertexCount);
 
@@ -115,9 +115,8 @@ void GltfMeshReader::readPrimitive(int meshIndex, int primitiveIndex, const Mesh
   degenerate_.note(degenerate, fmt::format("{} (triangle {})", path, firstDegenerate));
 }
 
-void GltfMeshReader::readTexcoordsAndColors(const tinygltf::Primitive& prim, const std::string& path,
+void GltfMeshReader::readTexcoordsAndColors(const tinygltf::Primitive& prim, const std::string& path, std::size_t base,
                                             std::size_t vertexCount, std::uint32_t material, Mesh& mesh) {
-  const std::size_t base = mesh.positions.size() - vertexCount;
   // Attributes stay empty until a primitive has them; the vertices of primitives without them
   // then get the default (uv (0, 0), white), the rest are filled in by read().
   for (int set : materials_.texcoordSets) {

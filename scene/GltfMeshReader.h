@@ -52,11 +52,11 @@ class GltfMeshReader {
   };
 
   void readPrimitive(int meshIndex, int primitiveIndex, const MeshPose& pose, Mesh& mesh, TriangleLists& lists);
-  // TEXCOORD_n of the sets materials read, and COLOR_0, of the primitive's vertices (the last
-  // vertexCount of mesh.positions). Attributes stay empty until a primitive has them; the
-  // vertices of primitives without them then get the default (uv (0, 0), white).
-  void readTexcoordsAndColors(const tinygltf::Primitive& prim, const std::string& path, std::size_t vertexCount,
-                              std::uint32_t material, Mesh& mesh);
+  // TEXCOORD_n of the sets materials read, and COLOR_0, of the primitive's vertices (from
+  // `base` in the mesh). Attributes stay empty until a primitive has them; the vertices of
+  // primitives without them then get the default (uv (0, 0), white).
+  void readTexcoordsAndColors(const tinygltf::Primitive& prim, const std::string& path, std::size_t base,
+                              std::size_t vertexCount, std::uint32_t material, Mesh& mesh);
   // The primitive's indices, each checked against the vertex count; 0, 1, 2, ... without any.
   std::vector<std::uint32_t> readIndices(const tinygltf::Primitive& prim, const std::string& path,
                                          std::size_t vertexCount);

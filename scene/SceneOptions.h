@@ -7,8 +7,8 @@
 namespace baker {
 
 // What a bake adds to a glTF file to describe the scene it sees: which glTF scene, and the
-// environment (glTF has none). Errors name these fields as "scene", "environment_map",
-// "env_intensity", "env_rotation" and "sky".
+// environment (glTF has none). Errors name these fields as "scene", "env_intensity",
+// "env_rotation" and "sky" (a map that cannot be read is an InputError naming its file).
 struct SceneOptions {
   int scene = -1;                   // the glTF scene index; -1: the file's default scene
   std::string environmentMap;       // a lat-long HDR/EXR

@@ -8,6 +8,7 @@
 #include "bake/BakeJob.h"
 #include "cli/CommandLine.h"
 #include "common/Error.h"
+#include "formats/VolumeHeader.h"
 #include "tests/TestData.h"
 
 namespace baker {
@@ -58,10 +59,21 @@ TEST(BakeJob, EveryBadValueIsRefusedNamingItsField) {
 TEST(BakeJob, TheCommandLineNamesTheFlagOfASetting) {
   EXPECT_EQ(flagOf("sg_sharpness"), "--sg-sharpness");
   EXPECT_EQ(flagOf("turned_off"), "--no");
-  EXPECT_EQ(flagOf("environment_map"), "--env");
   EXPECT_EQ(commandLineMessage(SettingError("spacing", "must be positive, got -1")), "--spacing must be positive, got -1");
   EXPECT_EQ(commandLineMessage(SettingError("turned_off", "x: not an effect")), "--no x: not an effect");
   EXPECT_EQ(commandLineMessage(InputError("a.gltf: broken")), "a.gltf: broken");
+}
+
+// A basis a file names is the file's content, not a setting: its error names the file.
+TEST(BakeJob, AFilesUnknownBasisIsTheFilesErrorNotASetting) {
+  try {
+    basisInFile("sh-l99", std::nullopt, "old.vdb");
+    FAIL() << "sh-l99 is not a basis";
+  } catch (const SettingError& e) {
+    FAIL() << "a setting error would print as a flag: " << e.what();
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("old.vdb: basis 'sh-l99' is not a basis", 0), 0u) << e.what();
+  }
 }
 
 TEST(BakeJob, TheVolumeRecordsWhatMadeItAndProbesAtMatchTheGrid) {

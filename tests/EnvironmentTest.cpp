@@ -201,10 +201,10 @@ TEST(RgbImage, RefusesAClaimedSizeBeyondTheLimitBeforeReading) {
   }
 }
 
-// Runs `baker env ARGS...`, as a user would.
-test::ProcessResult runEnv(std::vector<std::string> args) {
+// Runs `baker env ARGS...` in `dir`, as a user would.
+test::ProcessResult runEnv(const std::string& dir, std::vector<std::string> args) {
   args.insert(args.begin(), "env");
-  return test::runBaker(std::filesystem::temp_directory_path().string(), args);
+  return test::runBaker(dir, args);
 }
 
 std::vector<std::string> filesIn(const std::string& dir) {
@@ -224,7 +224,7 @@ class EnvCommand : public ::testing::Test {
   void TearDown() override { std::filesystem::remove_all(dir_); }
   // Exit code 2, one line on stderr mentioning `needle`, and nothing written beside the probe.
   void expectRejected(const std::vector<std::string>& args, const std::string& needle) {
-    const test::ProcessResult run = runEnv(args);
+    const test::ProcessResult run = runEnv(dir_, args);
     EXPECT_EQ(run.exitCode, 2) << run.err;
     EXPECT_NE(run.err.find(needle), std::string::npos) << run.err;
     EXPECT_EQ(std::count(run.err.begin(), run.err.end(), '\n'), 1) << run.err;
@@ -244,7 +244,7 @@ TEST_F(EnvCommand, SgSharpnessIsRejectedForOtherBases) {
 }
 
 TEST_F(EnvCommand, ReportsBothFitsAsJsonAndWritesTheImages) {
-  const test::ProcessResult run = runEnv({probe_, "--basis", "ambient-cube", "--json", "--out-dir", dir_});
+  const test::ProcessResult run = runEnv(dir_, {probe_, "--basis", "ambient-cube", "--json", "--out-dir", dir_});
   ASSERT_EQ(run.exitCode, 0) << run.err;
   const nlohmann::json report = nlohmann::json::parse(run.out);
   EXPECT_EQ(report.at("basis"), "ambient-cube");
