@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "bake/BakeRequest.h"
 #include "common/Error.h"
 
 namespace baker {
@@ -53,8 +52,6 @@ void turnOffEffects(std::vector<PlannedEffect>& plan, const std::vector<std::str
 }
 
 TransportSettings transportSettings(std::vector<PlannedEffect>& plan, int bounces, std::uint64_t seed) {
-  if (bounces < 0 || bounces > kMaxBounces)
-    throw SettingError("bounces", fmt::format("must be in 0..{}, got {}", kMaxBounces, bounces));
   PlannedEffect* reflections = find(plan, "bounces");
   if (reflections && reflections->simulated && bounces == 0) {
     reflections->simulated = false;

@@ -15,7 +15,8 @@ void requireKnownEffects(const std::vector<std::string>& names);
 void turnOffEffects(std::vector<PlannedEffect>& plan, const std::vector<std::string>& names);
 
 // The simulation the plan describes, with at most `bounces` diffuse reflections (none when the
-// bounces effect is off; --bounces 0 turns it off in the plan).
+// bounces effect is off; 0 bounces turns it off in the plan). `bounces` is a checked count
+// (validateBakeRequest: 0..kMaxBounces).
 TransportSettings transportSettings(std::vector<PlannedEffect>& plan, int bounces, std::uint64_t seed);
 
 }  // namespace baker
