@@ -10,6 +10,7 @@
 
 #include "bake/BakeJob.h"
 #include "bake/ProbeConvergence.h"
+#include "basis/BasisRegistry.h"
 #include "cli/BakeOptions.h"
 #include "cli/CommandLine.h"
 #include "cli/ProgressBar.h"
@@ -25,6 +26,7 @@ struct BakeReport {
   const BakeJob& job;
   const BakeStats& stats;
   VolumeOutput output;
+  EngineExport engineExport;
   double bakeSeconds = 0.0, writeSeconds = 0.0, totalSeconds = 0.0;
 
   double meanRays() const {
@@ -35,6 +37,14 @@ struct BakeReport {
   }
 };
 
+nlohmann::json engineExportJson(const EngineExport& e) {
+  if (e.engine.empty()) return nullptr;
+  return {{"engine", e.engine},
+          {"conversion", e.conversion},
+          {"clamped_values", e.clampedValues},
+          {"clamped_because", e.clampedBecause}};
+}
+
 nlohmann::json bakeJson(const BakeReport& r) {
   const BakeJob& job = r.job;
   const BakeStats& stats = r.stats;
@@ -42,7 +52,7 @@ nlohmann::json bakeJson(const BakeReport& r) {
   const ConvergenceSettings& convergence = job.settings().convergence;
   return {
       {"output", r.output.path},
-      {"format", r.output.format == VolumeFormat::Vdb ? "vdb" : "exr"},
+      {"format", volumeFormatName(r.output.format)},
       {"basis", job.basis().name()},
       {"grid", {{"dims", {grid.dims.x(), grid.dims.y(), grid.dims.z()}},
                 {"origin", {grid.origin.x(), grid.origin.y(), grid.origin.z()}},
@@ -70,6 +80,7 @@ nlohmann::json bakeJson(const BakeReport& r) {
                    {"total", r.totalSeconds}}},
       {"mrays_per_second", r.mraysPerSecond()},
       {"peak_memory_bytes", peakMemoryBytes()},
+      {"engine_export", engineExportJson(r.engineExport)},
   };
 }
 
@@ -100,6 +111,8 @@ void printBakeSummary(const BakeReport& r) {
       c.directViewShadow, c.aimedBounce, c.aimedBounceShadow, c.validity, c.total());
   std::cout << fmt::format("wrote {} ({}, {} coefficients per probe)\n", r.output.path, job.basis().name(),
                            job.basis().totalCoefficients());
+  const EngineExport& e = r.engineExport;
+  if (!e.engine.empty()) std::cout << fmt::format("  for {}: {}\n", e.engine, e.conversion);
 }
 
 }  // namespace
@@ -113,9 +126,11 @@ int runBakeCommand(int argc, char** argv) {
   addBakeOptions(app, options);
   app.add_flag("--quiet", quiet, "no plan and no progress bar on stderr (errors and warnings still)");
   app.add_option("--out", outPath,
-                 "output volume: a .vdb file, or a directory of EXR slices; default: the scene's name with .vdb "
-                 "(or _exr), here");
-  app.add_option("--format", format, "vdb or exr; default: from --out (.vdb: vdb, else exr), vdb without --out");
+                 "output volume: a .vdb file, or a directory (EXR slices, or an engine's files); default: the scene's "
+                 "name with .vdb (or _exr, _bevy, _threejs), here");
+  app.add_option("--format", format,
+                 "vdb, exr, bevy (Bevy's IrradianceVolume, KTX2) or threejs (three.js's LightProbeGrid); default: "
+                 "from --out (.vdb: vdb, else exr), vdb without --out");
   app.add_option("--precision", precision, "EXR slices: half or float")->capture_default_str();
   app.add_flag("--json", json, "print the summary as JSON on stdout");
 
@@ -123,11 +138,20 @@ int runBakeCommand(int argc, char** argv) {
     const VolumeOutput output = volumeOutput(options.request.scenePath, outPath, format, precision);
     // EXR slices are written through the image module: a missing one fails now, not after the bake.
     if (output.format == VolumeFormat::Exr) requireImageModule();
+    if (!app.count("--basis") && !preferredBasis(output).empty()) options.request.basis = preferredBasis(output);
+    const std::unique_ptr<Basis> basis = makeBasis(options.request.basis);
+    requireWritable(output, *basis);
+    const bool nonNegativeForFormat = !options.request.nonNegative && prefersNonNegativeFit(output, *basis);
+    if (nonNegativeForFormat) options.request.nonNegative = true;
     const auto start = std::chrono::steady_clock::now();
     std::ostringstream silenced;
     const std::unique_ptr<BakeJob> job = prepareBake(app, options, quiet ? silenced : std::cerr);
+    if (const std::string conversion = volumeConversion(output, job->basis()); !conversion.empty())
+      (quiet ? silenced : std::cerr) << fmt::format(
+          "export for {}: {}{}\n", volumeFormatName(output.format), conversion,
+          nonNegativeForFormat ? "; the fit is solved for coefficients >= 0, which the format's texels hold" : "");
     BakeStats stats;
-    BakeReport report{*job, stats, output};
+    BakeReport report{*job, stats, output, {}};
     auto stage = std::chrono::steady_clock::now();
     Volume volume;
     {
@@ -136,7 +160,10 @@ int runBakeCommand(int argc, char** argv) {
     }
     report.bakeSeconds = secondsSince(stage);
     stage = std::chrono::steady_clock::now();
-    writeVolume(volume, job->basis(), output);
+    report.engineExport = writeVolume(volume, job->basis(), output);
+    if (report.engineExport.clampedValues > 0)
+      std::cerr << fmt::format("baker: warning: {} values clamped for {}: {}\n", report.engineExport.clampedValues,
+                               report.engineExport.engine, report.engineExport.clampedBecause);
     report.writeSeconds = secondsSince(stage);
     report.totalSeconds = secondsSince(start);
     if (json)

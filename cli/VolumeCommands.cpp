@@ -31,7 +31,7 @@ int runSampleCommand(int argc, char** argv) {
   CLI::App app{"Irradiance and sky visibility of a volume at a world position, for a normal."};
   std::string path, at, normalText;
   bool json = false;
-  app.add_option("volume", path, "volume (.vdb, or a directory of EXR slices)")->required();
+  app.add_option("volume", path, "volume: .vdb, or a directory of EXR slices, a Bevy or a three.js export")->required();
   app.add_option("--at", at, "world position x,y,z")->required();
   app.add_option("--normal", normalText, "surface normal x,y,z (normalised here)")->required();
   app.add_flag("--json", json, "print the result as JSON on stdout");
@@ -71,7 +71,7 @@ int runInspectCommand(int argc, char** argv) {
   CLI::App app{"Describe what a volume holds."};
   std::string path;
   bool json = false;
-  app.add_option("volume", path, "volume (.vdb, or a directory of EXR slices)")->required();
+  app.add_option("volume", path, "volume: .vdb, or a directory of EXR slices, a Bevy or a three.js export")->required();
   app.add_flag("--json", json, "print the description as JSON on stdout");
   return runGuarded("baker inspect", app, argc, argv, [&]() {
     const Volume v = readVolume(path);
@@ -95,7 +95,7 @@ int runInspectCommand(int argc, char** argv) {
     if (json) {
       const nlohmann::json j = {
           {"volume", path},
-          {"format", std::filesystem::is_directory(path) ? "exr" : "vdb"},
+          {"format", volumeFormatOf(path)},
           {"bytes", bytes},
           {"basis", v.basisName},
           {"dims", {g.dims.x(), g.dims.y(), g.dims.z()}},

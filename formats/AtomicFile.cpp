@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 
 #include "common/Error.h"
 
@@ -62,6 +63,18 @@ AtomicDirectory::~AtomicDirectory() {
     std::error_code ec;
     std::filesystem::remove_all(temporary_, ec);
   }
+}
+
+void AtomicDirectory::writeFile(const std::string& name, const std::string& bytes) const {
+  std::ofstream out(std::filesystem::path(temporary_) / name, std::ios::binary);
+  out.write(bytes.data(), std::streamsize(bytes.size()));
+  out.close();
+  if (!out) throw InputError(fmt::format("{}: cannot write {}", final_, name));
+}
+
+bool directoryHolds(const std::string& directory, const std::string& name) {
+  std::error_code ec;
+  return std::filesystem::is_regular_file(std::filesystem::path(directory) / name, ec);
 }
 
 void AtomicDirectory::commit() {

@@ -34,6 +34,8 @@ class AtomicDirectory {
   AtomicDirectory& operator=(const AtomicDirectory&) = delete;
 
   const std::string& temporaryPath() const { return temporary_; }
+  // Writes file `name` of the directory whole; InputError naming it when it cannot.
+  void writeFile(const std::string& name, const std::string& bytes) const;
   void commit();
 
  private:
@@ -41,6 +43,10 @@ class AtomicDirectory {
   std::string temporary_;
   bool committed_ = false;
 };
+
+// Whether `directory` holds a regular file `name`: how a directory of one of baker's formats is
+// told from another (each has a file of its own name).
+bool directoryHolds(const std::string& directory, const std::string& name);
 
 // Throws InputError naming `path` if its directory does not exist; checked before baking so
 // that a typo costs nothing.

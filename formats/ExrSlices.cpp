@@ -12,6 +12,7 @@
 #include "basis/BasisRegistry.h"
 #include "common/Error.h"
 #include "formats/AtomicFile.h"
+#include "formats/HalfFloat.h"
 #include "formats/VolumeHeader.h"
 #include "formats/VolumeLayout.h"
 #include "formats/VolumeMetadata.h"
@@ -22,7 +23,6 @@ namespace {
 
 constexpr const char* kManifest = "manifest.json";
 constexpr const char* kFormatName = "baker-exr-slices";
-constexpr double kHalfMax = 65504.0;
 
 std::string sliceName(int k) { return fmt::format("z{:04}.exr", k); }
 
@@ -85,10 +85,7 @@ std::unique_ptr<ImageReader> openSlice(const std::filesystem::path& dir, const s
 
 }  // namespace
 
-bool isExrSliceDirectory(const std::string& path) {
-  std::error_code ec;
-  return std::filesystem::is_regular_file(std::filesystem::path(path) / kManifest, ec);
-}
+bool isExrSliceDirectory(const std::string& path) { return directoryHolds(path, kManifest); }
 
 void writeExrSlices(const Volume& volume, const Basis& basis, const std::string& directory, ExrPrecision precision) {
   requireFiniteVolume(volume);

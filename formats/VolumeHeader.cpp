@@ -14,10 +14,6 @@
 
 namespace baker {
 
-// Far beyond any bake (--spacing refuses grids above 2^27 probes) and small enough that a
-// corrupted size is refused before it allocates.
-constexpr double kMaxProbesRead = double(1 << 28);
-
 // The oldest format whose keys still mean what this reader takes them to mean.
 constexpr int kOldestFormatRead = 2;
 

@@ -11,6 +11,10 @@
 
 namespace baker {
 
+// Far beyond any bake (--spacing refuses grids above 2^27 probes) and small enough that a
+// corrupted size is refused before it allocates.
+constexpr double kMaxProbesRead = double(1 << 28);
+
 // What a reader learns from a file before its values: checked once, the same for every format.
 struct VolumeHeader {
   std::string basisName;

@@ -5,17 +5,38 @@
 #include <filesystem>
 
 #include "common/Error.h"
+#include "formats/BevyIrradianceVolume.h"
 #include "formats/ExrSlices.h"
+#include "formats/ThreeJsProbeGrid.h"
 #include "formats/VdbReader.h"
 #include "formats/VolumeHeader.h"
 
 namespace baker {
 
-Volume readVolume(const std::string& path) {
+std::string volumeFormatOf(const std::string& path) {
   std::error_code ec;
   const std::filesystem::path p(path);
-  if (std::filesystem::is_directory(p, ec) || p.filename() == "manifest.json") return readExrSlices(path);
+  if (std::filesystem::is_directory(p, ec)) {
+    if (isExrSliceDirectory(path)) return "exr";
+    if (isBevyIrradianceVolumeDirectory(path)) return "bevy";
+    if (isThreeJsProbeGridDirectory(path)) return "threejs";
+    throw InputError(fmt::format("{}: a directory without manifest.json, irradiance_volume.json or "
+                                 "light_probe_grid.json: not a volume this tool wrote",
+                                 path));
+  }
+  const std::string name = p.filename().string();
+  if (name == "manifest.json") return "exr";
+  if (name == "irradiance_volume.ktx2" || name == "irradiance_volume.json") return "bevy";
+  if (name == "light_probe_grid.json") return "threejs";
   if (!std::filesystem::is_regular_file(p, ec)) throw InputError(fmt::format("{}: volume file does not exist", path));
+  return "vdb";
+}
+
+Volume readVolume(const std::string& path) {
+  const std::string format = volumeFormatOf(path);
+  if (format == "exr") return readExrSlices(path);
+  if (format == "bevy") return readBevyIrradianceVolume(path);
+  if (format == "threejs") return readThreeJsProbeGrid(path);
   return readVdb(path);
 }
 

@@ -7,10 +7,15 @@
 
 namespace baker {
 
-// Reads a volume written by this tool, whatever the format: an OpenVDB file, or a directory
-// of EXR slices (or its manifest.json). The one reader every command uses. Throws InputError
-// naming the file and what is missing or inconsistent.
+// Reads a volume written by this tool, whatever the format: an OpenVDB file, a directory of
+// EXR slices (or its manifest.json), or an engine's export (Bevy's irradiance volume, three.js's
+// light probe grid: what the engine will shade with, in the basis it holds). The one reader
+// every command uses. Throws InputError naming the file and what is missing or inconsistent.
 Volume readVolume(const std::string& path);
+
+// Which format `path` holds, by its name or the files in its directory: "vdb", "exr", "bevy",
+// "threejs". InputError for a directory of none of them or a missing file.
+std::string volumeFormatOf(const std::string& path);
 
 // The basis a volume was baked in, with the settings that shape it (an sg-N bake's sharpness).
 std::unique_ptr<Basis> basisOf(const Volume& volume);

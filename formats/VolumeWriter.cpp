@@ -4,32 +4,65 @@
 
 #include <filesystem>
 
+#include "basis/BasisRegistry.h"
 #include "common/Error.h"
 #include "formats/AtomicFile.h"
+#include "formats/BevyIrradianceVolume.h"
+#include "formats/ThreeJsProbeGrid.h"
 #include "formats/VdbWriter.h"
 
 namespace baker {
+namespace {
+
+struct FormatEntry {
+  VolumeFormat format;
+  const char* name;
+  const char* directorySuffix;  // of the default path
+  bool (*isOurs)(const std::string& path);
+};
+
+const FormatEntry kFormats[] = {
+    {VolumeFormat::Vdb, "vdb", "", nullptr},
+    {VolumeFormat::Exr, "exr", "_exr", isExrSliceDirectory},
+    {VolumeFormat::Bevy, "bevy", "_bevy", isBevyIrradianceVolumeDirectory},
+    {VolumeFormat::ThreeJs, "threejs", "_threejs", isThreeJsProbeGridDirectory},
+};
+
+const FormatEntry& entryOf(VolumeFormat format) {
+  for (const FormatEntry& e : kFormats)
+    if (e.format == format) return e;
+  return kFormats[0];
+}
+
+}  // namespace
+
+const char* volumeFormatName(VolumeFormat format) { return entryOf(format).name; }
 
 VolumeOutput volumeOutput(const std::string& scenePath, std::string out, const std::string& format,
                           const std::string& precision) {
   VolumeOutput o;
   const bool vdbPath = std::filesystem::path(out).extension() == ".vdb";
-  if (format == "vdb" || (format.empty() && (out.empty() || vdbPath)))
-    o.format = VolumeFormat::Vdb;
-  else if (format == "exr" || format.empty())
-    o.format = VolumeFormat::Exr;
-  else
-    throw SettingError("format", fmt::format("{}: expected vdb or exr", format));
-  if (o.format == VolumeFormat::Exr && vdbPath)
-    throw SettingError("out", fmt::format("{}: a .vdb name for EXR slices; give a directory name", out));
+  if (format.empty()) {
+    o.format = out.empty() || vdbPath ? VolumeFormat::Vdb : VolumeFormat::Exr;
+  } else {
+    const FormatEntry* named = nullptr;
+    for (const FormatEntry& e : kFormats)
+      if (format == e.name) named = &e;
+    if (!named) throw SettingError("format", fmt::format("{}: expected vdb, exr, bevy or threejs", format));
+    o.format = named->format;
+  }
+  if (o.format != VolumeFormat::Vdb && vdbPath)
+    throw SettingError("out", fmt::format("{}: a .vdb name for {}, which is a directory; give a directory name", out,
+                                          volumeFormatName(o.format)));
   if (precision == "half")
     o.precision = ExrPrecision::Half;
   else if (precision == "float")
     o.precision = ExrPrecision::Float;
   else
     throw SettingError("precision", fmt::format("{}: expected half or float", precision));
+  const FormatEntry& entry = entryOf(o.format);
   const std::string stem = std::filesystem::path(scenePath).stem().string();
-  o.path = !out.empty() ? out : o.format == VolumeFormat::Vdb ? stem + ".vdb" : stem + "_exr";
+  o.path = !out.empty() ? out : o.format == VolumeFormat::Vdb ? stem + ".vdb" : stem + entry.directorySuffix;
   if (o.format == VolumeFormat::Vdb) {
     requireOutputDirectory(o.path);
   } else {
@@ -37,17 +70,45 @@ VolumeOutput volumeOutput(const std::string& scenePath, std::string out, const s
     std::error_code ec;
     if (!parent.empty() && !std::filesystem::is_directory(parent, ec))
       throw InputError(fmt::format("{}: output directory '{}' does not exist", o.path, parent.string()));
-    if (std::filesystem::exists(o.path, ec) && !isExrSliceDirectory(o.path))
-      throw InputError(fmt::format("{}: exists and is not a volume this tool wrote; not replacing it", o.path));
+    if (std::filesystem::exists(o.path, ec) && !entry.isOurs(o.path))
+      throw InputError(fmt::format("{}: exists and is not a {} volume this tool wrote; not replacing it", o.path,
+                                   entry.name));
   }
   return o;
 }
 
-void writeVolume(const Volume& volume, const Basis& basis, const VolumeOutput& output) {
-  if (output.format == VolumeFormat::Vdb)
-    writeVdb(volume, basis, output.path);
-  else
-    writeExrSlices(volume, basis, output.path, output.precision);
+std::string preferredBasis(const VolumeOutput& output) {
+  return output.format == VolumeFormat::Bevy ? "ambient-cube" : "";
+}
+
+bool prefersNonNegativeFit(const VolumeOutput& output, const Basis& basis) {
+  return output.format == VolumeFormat::Bevy && admitsNonNegativeFit(basis);
+}
+
+void requireWritable(const VolumeOutput& output, const Basis& basis) {
+  if (output.format != VolumeFormat::ThreeJs) return;
+  if (const std::string refusal = threeJsRefusal(basis); !refusal.empty())
+    throw SettingError("basis", fmt::format("{} cannot be written to format {} exactly: {}; formats vdb, exr and bevy "
+                                            "take every basis",
+                                            basis.name(), volumeFormatName(output.format), refusal));
+}
+
+std::string volumeConversion(const VolumeOutput& output, const Basis& basis) {
+  switch (output.format) {
+    case VolumeFormat::Bevy: return bevyConversion(basis);
+    case VolumeFormat::ThreeJs: return threeJsConversion(basis);
+    default: return "";
+  }
+}
+
+EngineExport writeVolume(const Volume& volume, const Basis& basis, const VolumeOutput& output) {
+  switch (output.format) {
+    case VolumeFormat::Vdb: writeVdb(volume, basis, output.path); return {};
+    case VolumeFormat::Exr: writeExrSlices(volume, basis, output.path, output.precision); return {};
+    case VolumeFormat::Bevy: return writeBevyIrradianceVolume(volume, basis, output.path);
+    case VolumeFormat::ThreeJs: return writeThreeJsProbeGrid(volume, basis, output.path);
+  }
+  return {};
 }
 
 }  // namespace baker

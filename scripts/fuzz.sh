@@ -5,12 +5,12 @@
 # runs; the script fails if any found something. A finding's input is saved as
 # build-sanitized/fuzz/TARGET-crash-… (or -leak-, -oom-, -timeout-), and
 # build-sanitized/fuzz/fuzz_TARGET FILE reproduces it.
-# Usage: scripts/fuzz.sh [SECONDS [TARGET ...]]   targets: gltf_loader vdb_reader exr_manifest
+# Usage: scripts/fuzz.sh [SECONDS [TARGET ...]]   targets: gltf_loader vdb_reader exr_manifest engine_exports
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/sanitized-build.sh
 seconds=${1:-60}
-if [ $# -gt 1 ]; then targets=("${@:2}"); else targets=(gltf_loader vdb_reader exr_manifest); fi
+if [ $# -gt 1 ]; then targets=("${@:2}"); else targets=(gltf_loader vdb_reader exr_manifest engine_exports); fi
 build_sanitized "${targets[@]/#/fuzz_}"
 # Whole allocation stacks, so that leak suppressions can name the library a leak is in: the
 # fast unwinder stops at libstdc++, which keeps no frame pointers. Too slow for the test suite;
