@@ -13,6 +13,7 @@
 #include "cli/PreviewCommand.h"
 #include "cli/ProbeCommand.h"
 #include "cli/ValidateCommand.h"
+#include "cli/ViewCommand.h"
 #include "cli/VolumeCommands.h"
 
 namespace {
@@ -36,6 +37,8 @@ const std::vector<Command>& commands() {
       {"sample", "baker sample VOLUME --at P --normal N", "irradiance and sky visibility at a point, for a normal",
        baker::runSampleCommand},
       {"preview", "baker preview VOLUME --out PNG", "a PNG of a volume's middle slices", baker::runPreviewCommand},
+      {"view", "baker view VOLUME --out DIR", "a page that shows a volume and its scene in a browser",
+       baker::runViewCommand},
       {"validate", "baker validate REF NEW", "compare a volume with another, or with Cycles references",
        baker::runValidateCommand},
       {"accuracy", "baker accuracy SCENE", "error against bake time for bases × ray counts × bounces",

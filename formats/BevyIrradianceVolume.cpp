@@ -53,8 +53,7 @@ namespace {
 
 nlohmann::json sidecarOf(const Volume& v, const Basis& basis, const EngineExport& report) {
   const CellCentredBox box = cellCentredBox(v.grid);
-  nlohmann::json metadata = nlohmann::json::object();
-  for (const auto& [key, value] : describingMetadata(v, basis)) metadata[key] = value;
+  const nlohmann::json metadata = describingMetadataJson(v, basis);
   return {{"format", kFormatName},
           {"format_version", kVolumeFormatVersion},
           {"bevy", kBevyVersions},

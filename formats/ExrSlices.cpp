@@ -41,8 +41,7 @@ bool alwaysFloat(const VolumeGrid& g) {
 
 nlohmann::json manifestOf(const Volume& v, const Basis& basis, ExrPrecision precision, double scale,
                           const std::vector<std::string>& channels) {
-  nlohmann::json metadata = nlohmann::json::object();
-  for (const auto& [key, value] : describingMetadata(v, basis)) metadata[key] = value;
+  const nlohmann::json metadata = describingMetadataJson(v, basis);
   std::vector<std::string> slices;
   for (int k = 0; k < v.grid.dims.z(); ++k) slices.push_back(sliceName(k));
   const ProbeGrid& g = v.grid;

@@ -46,8 +46,7 @@ void radianceOf(const Volume& v, const Basis& basis, std::int64_t p, double* out
 }
 
 nlohmann::json bakerSection(const Volume& v, const Basis& basis, const EngineExport& report, double scale) {
-  nlohmann::json metadata = nlohmann::json::object();
-  for (const auto& [key, value] : describingMetadata(v, basis)) metadata[key] = value;
+  const nlohmann::json metadata = describingMetadataJson(v, basis);
   const ProbeGrid& g = v.grid;
   return {{"format", kFormatName},
           {"format_version", kVolumeFormatVersion},

@@ -47,6 +47,12 @@ std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume
   return meta;
 }
 
+nlohmann::json describingMetadataJson(const Volume& volume, const Basis& basis) {
+  nlohmann::json metadata = nlohmann::json::object();
+  for (const auto& [key, value] : describingMetadata(volume, basis)) metadata[key] = value;
+  return metadata;
+}
+
 void readSettings(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume) {
   const std::string prefix = "baker.setting.";
   for (const auto& [key, value] : metadata)

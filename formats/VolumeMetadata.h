@@ -1,4 +1,5 @@
 #pragma once
+#include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
 #include <vector>
@@ -13,6 +14,9 @@ namespace baker {
 // reconstruct the basis without this code (JSON), the tool version, and the bake settings under
 // "baker.setting.*". The grid placement and per-probe counts are stored natively by each format.
 std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume& volume, const Basis& basis);
+
+// The same as one JSON object of strings, for formats that keep their metadata in JSON.
+nlohmann::json describingMetadataJson(const Volume& volume, const Basis& basis);
 
 // The metadata format version readers check; raised when the meaning of a key changes.
 // 3: .vdb files carry a checksum of their bytes (formats/VdbChecksum.h).

@@ -4,5 +4,5 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/sanitized-build.sh
-build_sanitized baker baker_tests importer_check
+build_sanitized baker baker_tests importer_check decoder_samples baker_viewer_bundle
 ctest --test-dir "$sanitized_build" --output-on-failure -j2 --timeout 900

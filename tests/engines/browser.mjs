@@ -8,18 +8,20 @@ import puppeteer from 'puppeteer-core';
 
 const TYPES = { '.html': 'text/html', '.js': 'text/javascript', '.mjs': 'text/javascript', '.json': 'application/json' };
 
-// routes: { '/prefix/': directory }; '/' serves `page` (HTML text).
+// routes: { '/prefix/': directory }; '/' serves `page` (HTML text) unless it is null, and a path
+// ending in '/' its index.html.
 export async function serve( page, routes ) {
 	const server = http.createServer( ( request, response ) => {
-		const url = decodeURIComponent( new URL( request.url, 'http://localhost' ).pathname );
+		let url = decodeURIComponent( new URL( request.url, 'http://localhost' ).pathname );
 		if ( url === '/favicon.ico' ) {
 			response.writeHead( 204 );
 			return response.end();
 		}
-		if ( url === '/' ) {
+		if ( url === '/' && page !== null ) {
 			response.writeHead( 200, { 'content-type': 'text/html' } );
 			return response.end( page );
 		}
+		if ( url.endsWith( '/' ) ) url += 'index.html';
 		for ( const [ prefix, directory ] of Object.entries( routes ) ) {
 			if ( ! url.startsWith( prefix ) ) continue;
 			const file = path.join( directory, url.slice( prefix.length ) );

@@ -6,8 +6,8 @@ import os from 'node:os';
 import path from 'node:path';
 
 // argv: node TEST.mjs BAKER_BINARY SOURCE_DIR
-export const baker = process.argv[ 2 ];
-export const sourceDir = process.argv[ 3 ];
+export const baker = process.argv[ 2 ] && path.resolve( process.argv[ 2 ] );
+export const sourceDir = process.argv[ 3 ] && path.resolve( process.argv[ 3 ] );
 if ( ! baker || ! sourceDir ) {
 	console.error( 'usage: node TEST.mjs BAKER_BINARY SOURCE_DIR' );
 	process.exit( 2 );
@@ -21,6 +21,7 @@ export function freshDirectory( name ) {
 
 export function runBaker( args, cwd ) {
 	const r = spawnSync( baker, args, { cwd, encoding: 'utf8' } );
+	if ( r.error ) throw new Error( `${ baker }: ${ r.error.message }` );
 	return { code: r.status, stdout: r.stdout, stderr: r.stderr };
 }
 

@@ -1,0 +1,308 @@
+// baker_irradiance.js — the reference decoder of decoders/baker_irradiance.h, in JavaScript (an
+// ES module, no dependencies): every basis, in double precision, with the same formulas and the
+// same names. A volume stores, per probe, the coefficients of the irradiance
+// E(n) = ∫ L(ω) max(0, n·ω) dω in one basis ("baker.basis"), channel after channel of the
+// basis's colour space (RGB, or YCoCg for ad-ycocg). docs/DECODERS.md has the formulas.
+//
+//   import { BasisDecoder } from './baker_irradiance.js';
+//   const decoder = new BasisDecoder( 'ad-ycocg' );    // sg-N: pass the "sharpness" of baker.reconstruction
+//   const [ r, g, b ] = decoder.irradiance( probeCoefficients, [ 0, 1, 0 ] );
+
+const PHI = 0.61803398874989484820; // (√5 − 1)/2
+const MAX_SH_ORDER = 64;
+const MAX_LOBES = 64;
+
+function dot( a, b ) { return a[ 0 ] * b[ 0 ] + a[ 1 ] * b[ 1 ] + a[ 2 ] * b[ 2 ]; }
+function cross( a, b ) { return [ a[ 1 ] * b[ 2 ] - a[ 2 ] * b[ 1 ], a[ 2 ] * b[ 0 ] - a[ 0 ] * b[ 2 ], a[ 0 ] * b[ 1 ] - a[ 1 ] * b[ 0 ] ]; }
+function normalize( v ) { const s = 1 / Math.sqrt( dot( v, v ) ); return [ s * v[ 0 ], s * v[ 1 ], s * v[ 2 ] ]; }
+
+// The icosahedron of Ambient Dice, in the order of the coefficients: vertices 0–3 are
+// (±1, ±Φ, 0), 4–7 (0, ±1, ±Φ), 8–11 (±Φ, 0, ±1) before normalising; bit 0 of the index is the
+// sign of the first non-zero coordinate, bit 1 that of the second (1: negative).
+export function icosahedronVertex( i ) {
+	const first = ( i & 1 ) ? - 1 : 1, second = ( i & 2 ) ? - 1 : 1;
+	switch ( i >> 2 ) {
+		case 0: return normalize( [ first, second * PHI, 0 ] );
+		case 1: return normalize( [ 0, first, second * PHI ] );
+		default: return normalize( [ first * PHI, 0, second ] );
+	}
+}
+
+// The frame of the Bézier variants' derivative data: t is the axis in which the vertex has a
+// zero coordinate, b = v̂ × t.
+function icosahedronTangent( i ) {
+	switch ( i >> 2 ) {
+		case 0: return [ 0, 0, 1 ];
+		case 1: return [ 1, 0, 0 ];
+		default: return [ 0, 1, 0 ];
+	}
+}
+function icosahedronBitangent( i ) { return cross( icosahedronVertex( i ), icosahedronTangent( i ) ); }
+
+const VERTICES = Array.from( { length: 12 }, ( _, i ) => icosahedronVertex( i ) );
+const TANGENTS = Array.from( { length: 12 }, ( _, i ) => icosahedronTangent( i ) );
+const BITANGENTS = Array.from( { length: 12 }, ( _, i ) => icosahedronBitangent( i ) );
+
+// The triangle that contains d, with d's spherical barycentrics ([v̂0 v̂1 v̂2]⁻¹ d) and flat ones
+// (those divided by their sum): mirror d into the positive octant, whose triangle has one vertex
+// of each group, and swap a vertex when d lies beyond the plane through the opposite edge.
+export function locateOnIcosahedron( d ) {
+	const sx = d[ 0 ] < 0 ? 1 : 0, sy = d[ 1 ] < 0 ? 1 : 0, sz = d[ 2 ] < 0 ? 1 : 0;
+	const ax = Math.abs( d[ 0 ] ), ay = Math.abs( d[ 1 ] ), az = Math.abs( d[ 2 ] );
+	const phi2 = 1 - PHI; // Φ² = 1 − Φ
+	let a = sx + 2 * sy, b = 4 + sy + 2 * sz, c = 8 + sx + 2 * sz;
+	if ( phi2 * ax - PHI * ay + az <= 0 ) c = b ^ 2;
+	else if ( - PHI * ax + ay + phi2 * az <= 0 ) b = a ^ 2;
+	else if ( ax + phi2 * ay - PHI * az <= 0 ) a = c ^ 1;
+	const v0 = VERTICES[ a ], v1 = VERTICES[ b ], v2 = VERTICES[ c ];
+	const r0 = cross( v1, v2 ), r1 = cross( v2, v0 ), r2 = cross( v0, v1 );
+	const determinant = dot( v0, r0 );
+	const spherical = [ dot( d, r0 ) / determinant, dot( d, r1 ) / determinant, dot( d, r2 ) / determinant ];
+	const sum = spherical[ 0 ] + spherical[ 1 ] + spherical[ 2 ];
+	return { vertex: [ a, b, c ], spherical, flat: spherical.map( ( s ) => s / sum ) };
+}
+
+// Lobe i of N spherical Gaussians sits on spherical Fibonacci point i of N.
+export function sphericalFibonacciAxis( i, n ) {
+	const z = 1 - ( 2 * i + 1 ) / n;
+	const r = Math.sqrt( Math.max( 0, 1 - z * z ) );
+	const phi = Math.PI * ( 3 - Math.sqrt( 5 ) ) * i;
+	return [ r * Math.cos( phi ), r * Math.sin( phi ), z ];
+}
+
+// Real SH without the Condon–Shortley phase, polar axis z, through the recurrences of the
+// normalised Legendre functions (they stay in range at any order); (x + iy)^m replaces angles.
+function accumulateSphericalHarmonics( order, coefficients, offset, arrays, d, sums ) {
+	const count = ( order + 1 ) * ( order + 1 );
+	let re = 1, im = 0, diagonal = Math.sqrt( 1 / ( 4 * Math.PI ) );
+	for ( let m = 0; m <= order; ++ m ) {
+		if ( m > 0 ) {
+			const nextRe = re * d[ 0 ] - im * d[ 1 ];
+			im = re * d[ 1 ] + im * d[ 0 ];
+			re = nextRe;
+			diagonal *= Math.sqrt( ( 2 * m + 1 ) / ( 2 * m ) );
+		}
+		let previous = 0, current = diagonal;
+		for ( let l = m; l <= order; ++ l ) {
+			if ( l > m ) {
+				const a = Math.sqrt( ( 4 * l * l - 1 ) / ( l * l - m * m ) );
+				const b = Math.sqrt( ( ( l - 1 ) * ( l - 1 ) - m * m ) / ( 4 * ( l - 1 ) * ( l - 1 ) - 1 ) );
+				const next = a * ( d[ 2 ] * current - b * previous );
+				previous = current;
+				current = next;
+			}
+			const centre = l * l + l;
+			for ( let k = 0; k < arrays; ++ k ) {
+				const c = offset + k * count;
+				if ( m === 0 ) sums[ k ] += current * coefficients[ c + centre ];
+				else sums[ k ] += Math.SQRT2 * current * ( re * coefficients[ c + centre + m ] + im * coefficients[ c + centre - m ] );
+			}
+		}
+	}
+}
+
+// The cubic Bézier patch of one triangle (Ambient Dice §2.3.1): corners are the vertex values,
+// edge points add the stored gradient along the edge, and the centre blends three points, each
+// of which makes the patch C1 across one edge.
+function bezierPatch( t, spherical, data, offset ) {
+	const root5 = Math.sqrt( 5 );
+	const vertexFactor = spherical ? 1 / root5 : 1;
+	const a0 = spherical ? ( root5 - 5 ) / 40 : - 0.25;
+	const a1 = spherical ? ( 11 * root5 - 15 ) / 40 : 0.25;
+	const a2 = spherical ? root5 / 10 : 0.5;
+	const alpha = 0.5 * Math.sqrt( ( 5 + root5 ) / 2 );
+	const b = spherical ? t.spherical : t.flat;
+	const corner = [ 0, 0, 0 ], gradient = [ null, null, null ], edge = [ [ 0, 0, 0 ], [ 0, 0, 0 ], [ 0, 0, 0 ] ];
+	for ( let k = 0; k < 3; ++ k ) {
+		const v = t.vertex[ k ], at = offset + 3 * v;
+		corner[ k ] = data[ at ];
+		const tangent = TANGENTS[ v ], bitangent = BITANGENTS[ v ];
+		gradient[ k ] = [ 0, 1, 2 ].map( ( a ) => data[ at + 1 ] * tangent[ a ] + data[ at + 2 ] * bitangent[ a ] );
+	}
+	for ( let k = 0; k < 3; ++ k ) for ( let m = 0; m < 3; ++ m ) {
+		edge[ k ][ m ] = vertexFactor * corner[ k ] + ( root5 / 2 ) * dot( VERTICES[ t.vertex[ m ] ], gradient[ k ] ) / ( 3 * alpha );
+	}
+	let value = 0;
+	for ( let k = 0; k < 3; ++ k ) {
+		value += b[ k ] * b[ k ] * b[ k ] * corner[ k ];
+		for ( let m = 0; m < 3; ++ m ) if ( m !== k ) value += 3 * b[ k ] * b[ k ] * b[ m ] * edge[ k ][ m ];
+	}
+	const p = b.map( ( x ) => Math.max( 0, x ) );
+	const weightSum = p[ 1 ] * p[ 2 ] + p[ 0 ] * p[ 2 ] + p[ 0 ] * p[ 1 ];
+	if ( weightSum <= 0 ) return value;
+	let centre = 0;
+	for ( let j = 0; j < 3; ++ j ) {
+		const k = ( j + 1 ) % 3, m = ( j + 2 ) % 3;
+		const w = p[ k ] * p[ m ] / weightSum;
+		centre += w * ( a0 * ( corner[ k ] + corner[ m ] ) + a1 * ( edge[ k ][ m ] + edge[ m ][ k ] ) + a2 * ( edge[ k ][ j ] + edge[ m ][ j ] ) );
+	}
+	return value + 6 * b[ 0 ] * b[ 1 ] * b[ 2 ] * centre;
+}
+
+// A function set: what one colour channel's coefficients are coefficients of.
+export class FunctionSet {
+	constructor( kind, options = {} ) {
+		this.kind = kind; // 'sh', 'icosahedron-linear', 'icosahedron-lobes', 'icosahedron-bezier', 'cube-lobes', 'spherical-gaussians'
+		this.shOrder = options.shOrder ?? 0;
+		this.spherical = options.spherical ?? true; // barycentrics of the linear and Bézier sets
+		this.cos2 = options.cos2 ?? 0;
+		this.cos4 = options.cos4 ?? 0;
+		this.sharpness = options.sharpness ?? 0;
+		this.axes = options.axes ?? [];
+	}
+
+	get count() {
+		switch ( this.kind ) {
+			case 'sh': return ( this.shOrder + 1 ) * ( this.shOrder + 1 );
+			case 'icosahedron-linear': case 'icosahedron-lobes': return 12;
+			case 'icosahedron-bezier': return 36;
+			case 'cube-lobes': return 6;
+			default: return this.axes.length;
+		}
+	}
+
+	// Σ_i coefficients[offset + k·count + i]·f_i(d) for k < arrays.
+	expand( coefficients, offset, arrays, d ) {
+		const count = this.count, sums = new Array( arrays ).fill( 0 );
+		switch ( this.kind ) {
+			case 'sh':
+				accumulateSphericalHarmonics( this.shOrder, coefficients, offset, arrays, d, sums );
+				break;
+			case 'icosahedron-linear': {
+				const t = locateOnIcosahedron( d ), b = this.spherical ? t.spherical : t.flat;
+				for ( let k = 0; k < arrays; ++ k ) for ( let c = 0; c < 3; ++ c ) sums[ k ] += b[ c ] * coefficients[ offset + k * count + t.vertex[ c ] ];
+				break;
+			}
+			case 'icosahedron-lobes':
+				for ( let i = 0; i < 12; ++ i ) {
+					const c = dot( VERTICES[ i ], d );
+					if ( c <= 0 ) continue;
+					const lobe = c * c * ( this.cos2 + this.cos4 * c * c );
+					for ( let k = 0; k < arrays; ++ k ) sums[ k ] += lobe * coefficients[ offset + k * count + i ];
+				}
+				break;
+			case 'icosahedron-bezier': {
+				const t = locateOnIcosahedron( d );
+				for ( let k = 0; k < arrays; ++ k ) sums[ k ] = bezierPatch( t, this.spherical, coefficients, offset + k * count );
+				break;
+			}
+			case 'cube-lobes':
+				for ( let a = 0; a < 3; ++ a ) {
+					const lobe = 2 * a + ( d[ a ] < 0 ? 1 : 0 );
+					for ( let k = 0; k < arrays; ++ k ) sums[ k ] += d[ a ] * d[ a ] * coefficients[ offset + k * count + lobe ];
+				}
+				break;
+			default:
+				for ( let i = 0; i < this.axes.length; ++ i ) {
+					const lobe = Math.exp( this.sharpness * ( dot( this.axes[ i ], d ) - 1 ) );
+					for ( let k = 0; k < arrays; ++ k ) sums[ k ] += lobe * coefficients[ offset + k * count + i ];
+				}
+		}
+		return sums;
+	}
+}
+
+function numberAfter( name, prefix, low, high ) {
+	if ( ! name.startsWith( prefix ) ) return - 1;
+	const digits = name.slice( prefix.length );
+	if ( ! /^(0|[1-9][0-9]?)$/.test( digits ) ) return - 1;
+	const value = Number( digits );
+	return value >= low && value <= high ? value : - 1;
+}
+
+// A basis by its name in "baker.basis". valid is false for an unknown name, or sg-N without λ.
+export class BasisDecoder {
+	constructor( basisName, sgSharpness = 0 ) {
+		this.ycocg = false;
+		this.primary = null; // every channel's functions, or Y's for YCoCg
+		this.chroma = null; // Co's and Cg's for YCoCg
+		this.valid = this.#parse( basisName, sgSharpness );
+	}
+
+	functions( channel ) { return this.ycocg && channel > 0 ? this.chroma : this.primary; }
+	coefficientCount( channel ) { return this.functions( channel ).count; }
+	coefficientOffset( channel ) {
+		let offset = 0;
+		for ( let c = 0; c < channel; ++ c ) offset += this.coefficientCount( c );
+		return offset;
+	}
+	get coefficientsPerProbe() { return this.coefficientOffset( 3 ); }
+
+	// Lobe axes as listed in "baker.reconstruction" ([x, y, z] per lobe).
+	setLobeAxes( axes ) { this.primary.axes = axes.map( ( a ) => [ a[ 0 ], a[ 1 ], a[ 2 ] ] ); }
+
+	// RGB irradiance at unit normal n from one probe's coefficients, starting at `offset`.
+	irradiance( coefficients, n, offset = 0 ) {
+		if ( ! this.ycocg ) return this.primary.expand( coefficients, offset, 3, n );
+		const [ y ] = this.primary.expand( coefficients, offset, 1, n );
+		const [ co, cg ] = this.chroma.expand( coefficients, offset + this.primary.count, 2, n );
+		return [ y + co - cg, y + cg, y - co - cg ];
+	}
+
+	// Sky visibility (1/π)∫V max(0, n·ω) dω from one probe's visibility values (channel 0's functions).
+	visibility( coefficients, n, offset = 0 ) { return this.primary.expand( coefficients, offset, 1, n )[ 0 ]; }
+
+	#parse( name, sgSharpness ) {
+		const shOrder = numberAfter( name, 'sh-l', 0, MAX_SH_ORDER );
+		const lobes = numberAfter( name, 'sg-', 1, MAX_LOBES );
+		if ( shOrder >= 0 ) {
+			this.primary = new FunctionSet( 'sh', { shOrder } );
+		} else if ( lobes >= 1 ) {
+			if ( ! ( sgSharpness > 0 ) ) return false;
+			const axes = Array.from( { length: lobes }, ( _, i ) => sphericalFibonacciAxis( i, lobes ) );
+			this.primary = new FunctionSet( 'spherical-gaussians', { sharpness: sgSharpness, axes } );
+		} else if ( name === 'ad-linear' ) {
+			this.primary = new FunctionSet( 'icosahedron-linear', { spherical: false } );
+		} else if ( name === 'ad-cos2' || name === 'ad-srbf' ) {
+			// ad-srbf is the paper's 0.7·c² + 0.3·c⁴; both normalised so that the 12 lobes sum to
+			// 1, from Σ max(0, v̂·n)² = 2 and Σ max(0, v̂·n)⁴ = 6/5 over the vertices.
+			const paper = name === 'ad-srbf', w2 = paper ? 0.7 : 1, w4 = paper ? 0.3 : 0;
+			const scale = 1 / ( 2 * w2 + 1.2 * w4 );
+			this.primary = new FunctionSet( 'icosahedron-lobes', { cos2: scale * w2, cos4: scale * w4 } );
+		} else if ( name === 'ad-rgb' || name === 'ad-rgb-flat' ) {
+			this.primary = new FunctionSet( 'icosahedron-bezier', { spherical: name === 'ad-rgb' } );
+		} else if ( name === 'ad-ycocg' ) {
+			this.ycocg = true;
+			this.primary = new FunctionSet( 'icosahedron-bezier', { spherical: true } );
+			this.chroma = new FunctionSet( 'icosahedron-linear', { spherical: true } );
+		} else if ( name === 'ambient-cube' ) {
+			this.primary = new FunctionSet( 'cube-lobes' );
+		} else {
+			return false;
+		}
+		return true;
+	}
+}
+
+// The eight probes around `position` and their weights (corner c: +1 along x if c & 1, y if
+// c & 2, z if c & 4); outside the grid the nearest probes on its boundary, like clamp-to-edge.
+// Probe (i, j, k) sits at origin + spacing·(i, j, k) and is number i + nx·(j + ny·k).
+export function probeNeighbourhood( position, origin, spacing, dims ) {
+	const low = [ 0, 0, 0 ], high = [ 0, 0, 0 ], fraction = [ 0, 0, 0 ];
+	for ( let a = 0; a < 3; ++ a ) {
+		const g = Math.min( Math.max( ( position[ a ] - origin[ a ] ) / spacing, 0 ), dims[ a ] - 1 );
+		low[ a ] = Math.floor( g );
+		if ( low[ a ] > dims[ a ] - 2 ) low[ a ] = dims[ a ] > 1 ? dims[ a ] - 2 : 0;
+		high[ a ] = dims[ a ] > 1 ? low[ a ] + 1 : 0;
+		fraction[ a ] = g - low[ a ];
+	}
+	const probe = [], weight = [];
+	for ( let c = 0; c < 8; ++ c ) {
+		const i = ( c & 1 ) ? high[ 0 ] : low[ 0 ], j = ( c & 2 ) ? high[ 1 ] : low[ 1 ], k = ( c & 4 ) ? high[ 2 ] : low[ 2 ];
+		probe.push( i + dims[ 0 ] * ( j + dims[ 1 ] * k ) );
+		weight.push( ( ( c & 1 ) ? fraction[ 0 ] : 1 - fraction[ 0 ] ) * ( ( c & 2 ) ? fraction[ 1 ] : 1 - fraction[ 1 ] ) *
+			( ( c & 4 ) ? fraction[ 2 ] : 1 - fraction[ 2 ] ) );
+	}
+	return { probe, weight };
+}
+
+// One interpolated probe: Σ_c weight[c]·values[probe[c]·count + i] for i < count.
+export function blendProbes( values, neighbourhood, count ) {
+	const out = new Float64Array( count );
+	for ( let c = 0; c < 8; ++ c ) {
+		const w = neighbourhood.weight[ c ], base = neighbourhood.probe[ c ] * count;
+		if ( w === 0 ) continue;
+		for ( let i = 0; i < count; ++ i ) out[ i ] += w * values[ base + i ];
+	}
+	return out;
+}

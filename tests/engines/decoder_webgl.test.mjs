@@ -1,0 +1,105 @@
+// decoders/baker_irradiance_webgl.js (the GLSL the viewer shades probes with) against
+// decoders/baker_irradiance.h: every basis's random coefficients (decoder_samples) decoded per
+// pixel in WebGL 2 (Debian's headless Chromium, SwiftShader) into a float render target must
+// agree with the header within 1e-5 of max(1, |E|) (the coefficients are at most 1).
+// argv: node decoder_webgl.test.mjs DECODER_SAMPLES SOURCE_DIR
+import { execFileSync } from 'node:child_process';
+import path from 'node:path';
+import { openPage, serve } from './browser.mjs';
+
+const [ samplesBinary, sourceDir ] = process.argv.slice( 2 );
+const bases = JSON.parse( execFileSync( samplesBinary, { encoding: 'utf8', maxBuffer: 1 << 28 } ) );
+
+const page = `<!doctype html><html><body><canvas id="gl"></canvas><script type="module">
+import { BasisDecoder } from '/decoders/baker_irradiance.js';
+import { BAKER_IRRADIANCE_GLSL, bakerUniforms, probeTexture, PROBE_TEXTURE_WIDTH } from '/decoders/baker_irradiance_webgl.js';
+const gl = document.getElementById( 'gl' ).getContext( 'webgl2' );
+if ( ! gl.getExtension( 'EXT_color_buffer_float' ) ) throw new Error( 'no EXT_color_buffer_float' );
+function compile( type, source ) {
+  const s = gl.createShader( type );
+  gl.shaderSource( s, source );
+  gl.compileShader( s );
+  if ( ! gl.getShaderParameter( s, gl.COMPILE_STATUS ) ) throw new Error( gl.getShaderInfoLog( s ) );
+  return s;
+}
+const program = gl.createProgram();
+gl.attachShader( program, compile( gl.VERTEX_SHADER, '#version 300 es\\nvoid main() { vec2 p = vec2( gl_VertexID & 1, gl_VertexID >> 1 ) * 4.0 - 1.0; gl_Position = vec4( p, 0, 1 ); }' ) );
+gl.attachShader( program, compile( gl.FRAGMENT_SHADER, '#version 300 es\\nprecision highp float;\\nprecision highp int;\\n' + BAKER_IRRADIANCE_GLSL +
+  '\\nuniform highp sampler2D directions;\\nout vec4 colour;\\nvoid main() { int p = int( gl_FragCoord.x ); vec3 n = texelFetch( directions, ivec2( p, 0 ), 0 ).xyz;' +
+  ' colour = vec4( bakerIrradiance( p, n ), bakerVisibility( p, n ) ); }' ) );
+gl.linkProgram( program );
+if ( ! gl.getProgramParameter( program, gl.LINK_STATUS ) ) throw new Error( gl.getProgramInfoLog( program ) );
+function floatTexture( unit, width, height, data ) {
+  const t = gl.createTexture();
+  gl.activeTexture( gl.TEXTURE0 + unit );
+  gl.bindTexture( gl.TEXTURE_2D, t );
+  gl.texImage2D( gl.TEXTURE_2D, 0, gl.RGBA32F, width, height, 0, gl.RGBA, gl.FLOAT, data );
+  gl.texParameteri( gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST );
+  gl.texParameteri( gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST );
+  return t;
+}
+window.decode = ( entry ) => {
+  const decoder = new BasisDecoder( entry.basis, entry.sharpness ?? 0 );
+  if ( entry.axes ) decoder.setLobeAxes( entry.axes );
+  const n = entry.cases.length, perProbe = decoder.coefficientsPerProbe, count0 = decoder.coefficientCount( 0 );
+  const coefficients = new Float32Array( n * perProbe ), visibility = new Float32Array( n * count0 ), directions = new Float32Array( 4 * n );
+  entry.cases.forEach( ( c, p ) => {
+    coefficients.set( c.coefficients, p * perProbe );
+    visibility.set( c.coefficients.slice( 0, count0 ), p * count0 );
+    directions.set( c.direction, 4 * p );
+  } );
+  const probes = probeTexture( coefficients, visibility, decoder, n );
+  gl.useProgram( program );
+  floatTexture( 0, probes.width, probes.height, probes.data );
+  floatTexture( 1, n, 1, directions );
+  gl.uniform1i( gl.getUniformLocation( program, 'bakerProbes' ), 0 );
+  gl.uniform1i( gl.getUniformLocation( program, 'directions' ), 1 );
+  for ( const [ name, { type, value } ] of Object.entries( bakerUniforms( decoder, probes ) ) ) {
+    const at = gl.getUniformLocation( program, name );
+    if ( type === 'vec3[]' ) gl.uniform3fv( at, value );
+    else if ( type === 'int' ) gl.uniform1i( at, value );
+    else gl.uniform1f( at, value );
+  }
+  const target = gl.createTexture();
+  gl.activeTexture( gl.TEXTURE2 );
+  gl.bindTexture( gl.TEXTURE_2D, target );
+  gl.texStorage2D( gl.TEXTURE_2D, 1, gl.RGBA32F, n, 1 );
+  const framebuffer = gl.createFramebuffer();
+  gl.bindFramebuffer( gl.FRAMEBUFFER, framebuffer );
+  gl.framebufferTexture2D( gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, target, 0 );
+  gl.viewport( 0, 0, n, 1 );
+  gl.drawArrays( gl.TRIANGLES, 0, 3 );
+  const out = new Float32Array( 4 * n );
+  gl.readPixels( 0, 0, n, 1, gl.RGBA, gl.FLOAT, out );
+  return Array.from( out );
+};
+window.ready = true;
+</script></body></html>`;
+
+const { server, url } = await serve( page, { '/decoders/': path.join( sourceDir, 'decoders' ) } );
+const { browser, page: tab, errors } = await openPage( url );
+let checks = 0, failures = 0, worst = 0;
+const fail = ( message ) => { if ( ++ failures <= 20 ) console.error( `FAIL: ${ message }` ); };
+try {
+	await tab.waitForFunction( 'window.ready === true', { timeout: 60000 } ).catch( () => {} );
+	for ( const entry of bases ) {
+		const got = await tab.evaluate( ( e ) => window.decode( e ), entry );
+		entry.cases.forEach( ( c, p ) => {
+			const expected = [ ...c.irradiance, c.visibility ];
+			for ( let k = 0; k < 4; ++ k ) {
+				const error = Math.abs( got[ 4 * p + k ] - expected[ k ] ) / Math.max( 1, Math.abs( expected[ k ] ) );
+				worst = Math.max( worst, error );
+				++ checks;
+				if ( ! ( error <= 1e-5 ) ) fail( `${ entry.basis } at ${ c.direction }: value ${ k } ${ got[ 4 * p + k ] }, header ${ expected[ k ] }` );
+			}
+		} );
+	}
+	++ checks;
+	if ( errors.length ) fail( `console errors: ${ errors.join( '; ' ) }` );
+} finally {
+	await browser.close();
+	server.close();
+}
+console.log( `${ bases.length } bases in WebGL; largest difference from the header ${ worst.toExponential( 2 ) } of max(1, |E|)` );
+console.log( `decoder_webgl: ${ checks - failures } of ${ checks } checks passed` );
+process.exit( failures === 0 && checks > 1 ? 0 : 1 );
