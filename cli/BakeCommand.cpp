@@ -42,7 +42,8 @@ nlohmann::json engineExportJson(const EngineExport& e) {
   return {{"engine", e.engine},
           {"conversion", e.conversion},
           {"clamped_values", e.clampedValues},
-          {"clamped_because", e.clampedBecause}};
+          {"clamped_because", e.clampedBecause},
+          {"warnings", e.warnings}};
 }
 
 nlohmann::json bakeJson(const BakeReport& r) {
@@ -161,6 +162,8 @@ int runBakeCommand(int argc, char** argv) {
     report.bakeSeconds = secondsSince(stage);
     stage = std::chrono::steady_clock::now();
     report.engineExport = writeVolume(volume, job->basis(), output);
+    for (const std::string& warning : report.engineExport.warnings)
+      std::cerr << fmt::format("baker: warning: {}: {}\n", report.engineExport.engine, warning);
     if (report.engineExport.clampedValues > 0)
       std::cerr << fmt::format("baker: warning: {} values clamped for {}: {}\n", report.engineExport.clampedValues,
                                report.engineExport.engine, report.engineExport.clampedBecause);

@@ -24,7 +24,8 @@ int runViewCommand(int argc, char** argv) {
   auto* serve = app.add_option("--serve", port, "serve the page on 127.0.0.1 at this port (0: any free) and print "
                                                 "its address; runs until interrupted")
                     ->expected(0, 1)
-                    ->default_str("8080");
+                    ->default_str("8080")
+                    ->check(CLI::Range(0, 65535));
   app.add_flag("--json", json, "print what was written as JSON on stdout");
   return runGuarded("baker view", app, argc, argv, [&]() {
     const Volume volume = readVolume(volumePath);

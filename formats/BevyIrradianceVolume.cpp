@@ -2,12 +2,14 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <nlohmann/json.hpp>
 
+#include "basis/BasisRegistry.h"
 #include "common/Error.h"
 #include "formats/AtomicFile.h"
 #include "formats/CellCentredBox.h"
@@ -53,7 +55,7 @@ namespace {
 
 nlohmann::json sidecarOf(const Volume& v, const Basis& basis, const EngineExport& report) {
   const CellCentredBox box = cellCentredBox(v.grid);
-  const nlohmann::json metadata = describingMetadataJson(v, basis);
+  const nlohmann::json metadata = exportedMetadataJson(v, basis, *makeBasis("ambient-cube"));
   return {{"format", kFormatName},
           {"format_version", kVolumeFormatVersion},
           {"bevy", kBevyVersions},
@@ -112,6 +114,10 @@ EngineExport writeBevyIrradianceVolume(const Volume& volume, const Basis& basis,
   report.engine = "bevy";
   report.conversion = bevyConversion(basis);
   const Ktx2Texture3D texture = textureOf(volume, basis, report);
+  if (std::max({texture.width, texture.height, texture.depth}) > std::uint32_t(kCommon3dTextureLimit))
+    report.warnings.push_back(fmt::format("the texture is {} × {} × {}: Bevy (wgpu's default limits) takes 3D textures "
+                                          "of at most {} texels a side; use a larger spacing or split the volume",
+                                          texture.width, texture.height, texture.depth, kCommon3dTextureLimit));
   const std::string sidecar = sidecarOf(volume, basis, report).dump(2);
   AtomicDirectory out(directory, isBevyIrradianceVolumeDirectory);
   const std::vector<std::uint8_t> ktx2 = encodeKtx2(texture);
@@ -144,15 +150,28 @@ VolumeHeader headerOf(const nlohmann::json& j, const std::string& where, double&
   intensity = j.at("intensity").get<double>();
   if (!(intensity > 0.0) || !std::isfinite(intensity))
     throw InputError(fmt::format("{}: \"intensity\" must be a positive number", where));
-  header.text.push_back({"baker.format_version", std::to_string(j.at("format_version").get<int>())});
+  const double version = j.at("format_version").get<double>();
+  if (!(version >= 0.0 && version <= 1e6 && version == std::floor(version)))
+    throw InputError(fmt::format("{}: \"format_version\" {} is not a format version", where, version));
+  header.text.push_back({"baker.format_version", std::to_string(int(version))});
   for (const auto& [key, value] : j.at("metadata").items())
     if (key != "baker.format_version") header.text.push_back({key, value.get<std::string>()});
   return header;
 }
 
-std::vector<std::uint8_t> readBytes(const std::string& path) {
+// The texture's bytes, after checking that the file is no larger than the grid's texels and a
+// KTX2 header, descriptor and key/value data could make it: a file is read whole, so its size is
+// believed only when the sidecar's grid agrees with it.
+std::vector<std::uint8_t> readTexture(const std::string& path, const ProbeGrid& g) {
+  constexpr std::uintmax_t kMostHeaderBytes = 1 << 16;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(fmt::format("{}: the texture is missing", path));
+  const std::uintmax_t texels = 4 * std::uintmax_t(g.dims.x()) * (2 * std::uintmax_t(g.dims.y())) * (3 * std::uintmax_t(g.dims.z()));
+  const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
+  if (ec || bytes > texels + kMostHeaderBytes)
+    throw InputError(fmt::format("{}: {} bytes, more than the {} × {} × {} probes of {} need", path, bytes, g.dims.x(),
+                                 g.dims.y(), g.dims.z(), kSidecarName));
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(fmt::format("{}: the texture is missing", path));
   return std::vector<std::uint8_t>(std::istreambuf_iterator<char>(in), {});
 }
 
@@ -173,7 +192,7 @@ Volume readBevyIrradianceVolume(const std::string& path) {
   }
   const ProbeGrid& g = header.grid;
   const std::string texturePath = (dir / kTextureName).string();
-  const Ktx2Texture3D t = decodeKtx2(readBytes(texturePath), texturePath);
+  const Ktx2Texture3D t = decodeKtx2(readTexture(texturePath, g), texturePath);
   if (t.vkFormat != kVkFormatE5B9G9R9 || t.typeSize != 4)
     throw InputError(fmt::format("{}: vkFormat {}, expected {} (E5B9G9R9_UFLOAT_PACK32)", texturePath, t.vkFormat,
                                  kVkFormatE5B9G9R9));
@@ -194,6 +213,7 @@ Volume readBevyIrradianceVolume(const std::string& path) {
           float* probe = volume.coefficients.data() + g.linearIndex(i, j, k) * header.coefficientsPerProbe;
           for (int c = 0; c < 3; ++c) probe[6 * c + face] = float(double(faceValue[c]) * M_PI * intensity);
         }
+  requireFiniteValues(volume, sidecarPath);
   return volume;
 }
 

@@ -42,9 +42,14 @@ Eigen::Vector3d jsonVector3(const nlohmann::json& value, const std::string& wher
 }
 
 Eigen::Vector3i jsonResolution(const nlohmann::json& value, const std::string& where, const std::string& field) {
-  const auto v = value.get<std::vector<int>>();
+  // Read as numbers and checked before any conversion: a JSON number out of int's range must be
+  // refused, not converted.
+  const auto v = value.get<std::vector<double>>();
   if (v.size() != 3) throw InputError(fmt::format("{}: \"{}\" needs three whole numbers", where, field));
-  return {v[0], v[1], v[2]};
+  for (double n : v)
+    if (!(n >= 1.0 && n <= kMaxProbesRead && n == std::floor(n)))
+      throw InputError(fmt::format("{}: \"{}\" holds {}; expected whole numbers from 1 to 2^28", where, field, n));
+  return {int(v[0]), int(v[1]), int(v[2])};
 }
 
 }  // namespace baker

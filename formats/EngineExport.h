@@ -1,6 +1,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace baker {
 
@@ -12,6 +13,11 @@ struct EngineExport {
   std::string conversion;  // one sentence, for the plan and the summary
   std::int64_t clampedValues = 0;
   std::string clampedBecause;  // why values were clamped, when any were
+  std::vector<std::string> warnings;  // what the engine may refuse to load (texture limits)
 };
+
+// The largest 3D texture side Bevy (wgpu's default limits) and most WebGL 2 implementations take;
+// WebGL 2 promises only 256.
+constexpr int kCommon3dTextureLimit = 2048;
 
 }  // namespace baker

@@ -6,10 +6,4 @@ namespace baker {
 
 std::uint16_t halfBits(float value) { return Imath::half(value).bits(); }
 
-float halfValue(std::uint16_t bits) {
-  Imath::half h;
-  h.setBits(bits);
-  return float(h);
-}
-
 }  // namespace baker

@@ -2,11 +2,13 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "basis/BasisRegistry.h"
 #include "common/Error.h"
 #include "formats/AtomicFile.h"
 #include "formats/CellCentredBox.h"
@@ -46,7 +48,7 @@ void radianceOf(const Volume& v, const Basis& basis, std::int64_t p, double* out
 }
 
 nlohmann::json bakerSection(const Volume& v, const Basis& basis, const EngineExport& report, double scale) {
-  const nlohmann::json metadata = describingMetadataJson(v, basis);
+  const nlohmann::json metadata = exportedMetadataJson(v, basis, *makeBasis("sh-l2"));
   const ProbeGrid& g = v.grid;
   return {{"format", kFormatName},
           {"format_version", kVolumeFormatVersion},
@@ -131,6 +133,11 @@ EngineExport writeThreeJsProbeGrid(const Volume& volume, const Basis& basis, con
   for (std::size_t n = 0; n < radiance.size(); ++n) integers[n] = std::llround(radiance[n] * scale);
 
   const std::string atlas = atlasOf(g, radiance, report);
+  const int atlasDepth = kThreeJsAtlasSubVolumes * (g.dims.z() + 2);
+  if (std::max({g.dims.x(), g.dims.y(), atlasDepth}) > kCommon3dTextureLimit)
+    report.warnings.push_back(fmt::format("the atlas is {} × {} × {}: most WebGL 2 implementations take 3D textures of "
+                                          "at most {} texels a side (all take 256); use a larger spacing",
+                                          g.dims.x(), g.dims.y(), atlasDepth, kCommon3dTextureLimit));
   const CellCentredBox box = cellCentredBox(g);
   nlohmann::json json = {
       {"metadata", {{"version", 1}, {"type", "LightProbeGrid"}, {"generator", fmt::format("baker {}", BAKER_VERSION)}}},
@@ -163,8 +170,12 @@ VolumeHeader headerOf(const nlohmann::json& j, const std::string& where) {
   box.size = Eigen::Vector3d(j.at("width").get<double>(), j.at("height").get<double>(), j.at("depth").get<double>());
   header.grid = probeGridOf(box, where);
   header.coefficientsPerProbe = kValuesPerProbe;
-  header.text.push_back({"baker.format_version", std::to_string(kVolumeFormatVersion)});
-  if (j.contains("baker") && j["baker"].contains("metadata"))
+  // three.js's own toJSON has no "baker" object: its data reads as this version's.
+  std::string version = std::to_string(kVolumeFormatVersion);
+  if (j.contains("baker") && j["baker"].is_object() && j["baker"].contains("format_version"))
+    version = j["baker"]["format_version"].dump();
+  header.text.push_back({"baker.format_version", version});
+  if (j.contains("baker") && j["baker"].is_object() && j["baker"].contains("metadata"))
     for (const auto& [key, value] : j["baker"]["metadata"].items())
       if (key != "baker.format_version") header.text.push_back({key, value.get<std::string>()});
   return header;

@@ -1,5 +1,7 @@
 #include "formats/VolumeMetadata.h"
 
+#include <fmt/format.h>
+
 #include <nlohmann/json.hpp>
 
 #include "formats/ReconstructionData.h"
@@ -51,6 +53,20 @@ nlohmann::json describingMetadataJson(const Volume& volume, const Basis& basis) 
   nlohmann::json metadata = nlohmann::json::object();
   for (const auto& [key, value] : describingMetadata(volume, basis)) metadata[key] = value;
   return metadata;
+}
+
+nlohmann::json exportedMetadataJson(const Volume& source, const Basis& sourceBasis, const Basis& stored) {
+  Volume held;
+  held.grid = source.grid;
+  held.basisName = stored.name();
+  held.coefficientsPerProbe = stored.totalCoefficients();
+  held.settings = source.settings;
+  held.settings["source_basis"] = sourceBasis.name();
+  for (const auto& [name, value] : sourceBasis.parameters()) {
+    held.settings.erase(name);
+    held.settings["source_" + name] = fmt::format("{:.17g}", value);
+  }
+  return describingMetadataJson(held, stored);
 }
 
 void readSettings(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume) {

@@ -18,6 +18,12 @@ std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume
 // The same as one JSON object of strings, for formats that keep their metadata in JSON.
 nlohmann::json describingMetadataJson(const Volume& volume, const Basis& basis);
 
+// The metadata of an engine's export of `source`: what it stores, in the engine's basis `stored`
+// (no sky visibility, no probe states), over the same grid and settings; the bake's own basis and
+// its parameters are kept as settings "source_basis" and "source_<parameter>", so that a reader
+// makes the stored basis without parameters that are not its own.
+nlohmann::json exportedMetadataJson(const Volume& source, const Basis& sourceBasis, const Basis& stored);
+
 // The metadata format version readers check; raised when the meaning of a key changes.
 // 3: .vdb files carry a checksum of their bytes (formats/VdbChecksum.h).
 constexpr int kVolumeFormatVersion = 3;

@@ -42,19 +42,6 @@ std::string jsonText(const std::string& path) {
   return text;
 }
 
-std::string percentDecoded(const std::string& uri) {
-  std::string out;
-  for (std::size_t i = 0; i < uri.size(); ++i) {
-    if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit((unsigned char)uri[i + 1]) &&
-        std::isxdigit((unsigned char)uri[i + 2])) {
-      out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
-      i += 2;
-    } else {
-      out += uri[i];
-    }
-  }
-  return out;
-}
 
 // Why `uri` may not be read, or "" when it may: a relative path that stays in the folder.
 std::string refusal(const std::string& uri) {
@@ -148,6 +135,20 @@ tinygltf::FsCallbacks confinedFileSystem(const std::string& sceneFolder) {
   fs.WriteWholeFile = tinygltf::WriteWholeFile;
   fs.user_data = const_cast<std::string*>(&sceneFolder);
   return fs;
+}
+
+std::string percentDecoded(const std::string& uri) {
+  std::string out;
+  for (std::size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit((unsigned char)uri[i + 1]) &&
+        std::isxdigit((unsigned char)uri[i + 2])) {
+      out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+      i += 2;
+    } else {
+      out += uri[i];
+    }
+  }
+  return out;
 }
 
 std::string sceneFolderOf(const std::string& path) {

@@ -21,6 +21,9 @@ void checkExternalUris(const nlohmann::json& root, const std::string& path);
 // no NAME). `sceneFolder` must outlive the loader.
 tinygltf::FsCallbacks confinedFileSystem(const std::string& sceneFolder);
 
+// A relative URI as a file name: %XX escapes decoded (others left as they are).
+std::string percentDecoded(const std::string& uri);
+
 // The folder tinygltf resolves `path`'s URIs against (as tinygltf computes it).
 std::string sceneFolderOf(const std::string& path);
 

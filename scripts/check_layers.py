@@ -17,8 +17,9 @@ MAY_INCLUDE = {
     # An importer links formats and basis alone: no scene, no bake, so no Embree.
     "formats": {"common", "images", "basis", "volume", "formats"},
     "validate": {"common", "images", "scene", "basis", "volume", "bake", "formats", "validate"},
-    # The browser viewer's page: a volume as files a page loads, and a server for them.
-    "viewer": {"common", "images", "basis", "volume", "formats", "viewer"},
+    # The browser viewer's page: a volume as files a page loads (with its scene's files, confined
+    # as the loader confines them), and a server for them.
+    "viewer": {"common", "images", "scene", "basis", "volume", "formats", "viewer"},
 }
 LIBRARY = set(MAY_INCLUDE)
 INCLUDE = re.compile(r'^\s*#\s*include\s+[<"]([^">]+)[">]')

@@ -51,6 +51,7 @@ Volume positiveVolume(const Basis& basis, unsigned seed, const Eigen::Vector3i& 
                                                                : level + 0.5f * float(values[i]);
     }
   v.settings["rays"] = "64";
+  for (const auto& [name, value] : basis.parameters()) v.settings[name] = std::to_string(value);
   return v;
 }
 
@@ -192,7 +193,7 @@ TEST(ThreeJsProbeGrid, RefusesBasesItCannotHoldExactly) {
 
 TEST(BevyIrradianceVolume, ReadsBackAsTheAmbientCubeBevyShadesWith) {
   const std::string dir = test::makeTempDir("bevy_round_trip");
-  for (const char* name : {"ambient-cube", "sh-l2", "ad-ycocg"}) {
+  for (const char* name : {"ambient-cube", "sh-l2", "ad-ycocg", "sg-12"}) {
     const auto basis = makeBasis(name);
     const Volume v = positiveVolume(*basis, 5);
     const std::string out = dir + "/" + name;
@@ -200,8 +201,9 @@ TEST(BevyIrradianceVolume, ReadsBackAsTheAmbientCubeBevyShadesWith) {
     EXPECT_EQ(report.clampedValues, 0) << name;
     EXPECT_EQ(volumeFormatOf(out + "/irradiance_volume.ktx2"), "bevy");
     const Volume back = readVolume(out);
-    const auto cube = basisOf(back);
+    const auto cube = basisOf(back);  // the bake's basis parameters are not the ambient cube's
     EXPECT_EQ(back.basisName, "ambient-cube");
+    EXPECT_EQ(back.settings.at("source_basis"), name);
     EXPECT_EQ(back.grid.dims, v.grid.dims);
     EXPECT_LT((back.grid.origin - v.grid.origin).norm(), 1e-12);
     for (std::int64_t p = 0; p < v.grid.probeCount(); ++p)
@@ -251,6 +253,10 @@ TEST(EngineFormats, DamagedExportsNameTheirFile) {
           "resolution");
   damaged("bevy_rotated", "irradiance_volume.json", [](nlohmann::json& j) { j["transform"]["rotation"] = {0, 1, 0, 0}; },
           "rotation");
+  damaged("bevy_fraction", "irradiance_volume.json", [](nlohmann::json& j) { j["resolution"][1] = 2.5; }, "whole numbers");
+  damaged("bevy_beyond_int", "irradiance_volume.json", [](nlohmann::json& j) { j["resolution"][1] = 1e20; },
+          "whole numbers");
+  damaged("bevy_intensity", "irradiance_volume.json", [](nlohmann::json& j) { j["intensity"] = 1e308; }, "non-finite");
   damaged("three_data", "light_probe_grid.json", [](nlohmann::json& j) { j["coefficients"]["data"].erase(0); }, "27 per probe");
   damaged("three_type", "light_probe_grid.json", [](nlohmann::json& j) { j["metadata"]["type"] = "Mesh"; }, "LightProbeGrid");
   damaged("three_cells", "light_probe_grid.json", [](nlohmann::json& j) { j["width"] = 1.0; }, "cubic cells");

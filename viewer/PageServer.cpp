@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 #include <netinet/in.h>
 #include <sys/socket.h>
+#include <sys/time.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -96,9 +97,15 @@ void servePage(const std::string& directory, int port, const std::function<void(
   for (;;) {
     const int client = ::accept(server, nullptr, nullptr);
     if (client < 0) {
-      if (errno == EINTR) continue;
-      break;
+      if (errno == EINTR || errno == ECONNABORTED) continue;
+      const std::string why = std::strerror(errno);
+      ::close(server);
+      throw std::runtime_error(fmt::format("serving {}: cannot accept a connection: {}", directory, why));
     }
+    // One connection at a time: a client that sends or reads nothing must not stop the others.
+    const timeval patience{5, 0};
+    ::setsockopt(client, SOL_SOCKET, SO_RCVTIMEO, &patience, sizeof patience);
+    ::setsockopt(client, SOL_SOCKET, SO_SNDTIMEO, &patience, sizeof patience);
     answer(client, root);
     ::close(client);
   }

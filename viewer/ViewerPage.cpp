@@ -94,7 +94,8 @@ std::string sceneOfVolume(const Volume& volume, const std::string& volumePath, c
   if (named == volume.settings.end() || named->second.empty()) return "";
   // Beside the volume: beside its file, or beside its directory (EXR slices, an engine's export),
   // or beside the directory of the file inside it that was named.
-  std::filesystem::path where = std::filesystem::absolute(volumePath, ec);
+  std::filesystem::path where = std::filesystem::absolute(volumePath, ec).lexically_normal();
+  if (where.filename().empty()) where = where.parent_path();  // "room_exr/" names room_exr
   if (!std::filesystem::is_directory(where, ec) && volumeFormatOf(volumePath) != "vdb") where = where.parent_path();
   const std::filesystem::path beside = where.parent_path() / std::filesystem::path(named->second).filename();
   return std::filesystem::is_regular_file(beside, ec) ? beside.string() : "";

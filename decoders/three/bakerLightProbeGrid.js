@@ -8,11 +8,18 @@ import { LightProbeGridWebGL } from 'three/addons/lighting/LightProbeGridWebGL.j
 
 const SUB_VOLUMES = 7;
 
-// json: the parsed light_probe_grid.json; atlas: the bytes of light_probe_grid.bin.
+// json: the parsed light_probe_grid.json; atlas: the bytes of light_probe_grid.bin (an
+// ArrayBuffer or a Uint8Array).
 export function lightProbeGridFromBaker( json, atlas ) {
 	const [ nx, ny, nz ] = json.resolution;
 	const layers = SUB_VOLUMES * ( nz + 2 );
-	const texels = new Uint16Array( atlas.buffer ?? atlas, atlas.byteOffset ?? 0, nx * ny * layers * 4 );
+	const bytes = atlas instanceof ArrayBuffer ? new Uint8Array( atlas ) : atlas;
+	if ( bytes.byteLength !== nx * ny * layers * 8 ) {
+		throw new Error( `light_probe_grid.bin: ${ bytes.byteLength } bytes, but a ${ nx } × ${ ny } × ${ nz } grid's atlas has ${ nx * ny * layers * 8 }` );
+	}
+	// A copy when the bytes do not start on a 2-byte boundary (halves must be aligned).
+	const aligned = bytes.byteOffset % 2 === 0 ? bytes : bytes.slice();
+	const texels = new Uint16Array( aligned.buffer, aligned.byteOffset, nx * ny * layers * 4 );
 	const grid = new LightProbeGridWebGL( json.width, json.height, json.depth, nx, ny, nz );
 	grid.position.fromArray( json.position );
 	grid.updateBoundingBox(); // the renderer reads the box, which moving the grid does not update

@@ -24,7 +24,9 @@ function linearToSrgb( v ) {
 }
 
 async function loadVolume() {
-	const info = await ( await fetch( 'volume.json' ) ).json();
+	const answer = await fetch( 'volume.json' );
+	if ( ! answer.ok ) throw new Error( `volume.json: ${ answer.status }` );
+	const info = await answer.json();
 	const response = await fetch( info.binary.file );
 	if ( ! response.ok ) throw new Error( `${ info.binary.file }: ${ response.status }` );
 	const bytes = await response.arrayBuffer();
@@ -58,8 +60,10 @@ function sampleAt( volume, position, normal ) {
 	return { irradiance: e, visibility: v };
 }
 
-function probeMaterial( volume ) {
+function probeMaterial( volume, renderer ) {
 	const texture = probeTexture( volume.coefficients, volume.info.visibility_per_probe > 0 ? volume.visibility : null, volume.decoder, volume.probeCount );
+	const limit = renderer.capabilities.maxTextureSize;
+	if ( texture.height > limit ) throw new Error( `the probes need a ${ texture.width } × ${ texture.height } texture; this browser's WebGL takes ${ limit } rows` );
 	const data = new THREE.DataTexture( texture.data, texture.width, texture.height, THREE.RGBAFormat, THREE.FloatType );
 	data.needsUpdate = true;
 	const uniforms = { bakerProbes: { value: data }, mode: { value: MODE_IRRADIANCE }, exposure: { value: 1 } };
@@ -71,13 +75,12 @@ function probeMaterial( volume ) {
 		glslVersion: THREE.GLSL3,
 		uniforms,
 		vertexShader: /* glsl */ `
-in float probeIndex;
 in float probeState;
 out vec3 worldNormal;
 flat out int probe;
 flat out int state;
 void main() {
-  probe = int( probeIndex + 0.5 );
+  probe = gl_InstanceID;  // instance p is probe p
   state = int( probeState + 0.5 );
   mat4 world = modelMatrix * instanceMatrix;
   worldNormal = mat3( world ) * normal;
@@ -108,18 +111,16 @@ void main() {
 	} );
 }
 
-function probeSpheres( volume ) {
+function probeSpheres( volume, renderer ) {
 	const { info } = volume;
 	const radius = 0.12 * info.spacing;
-	const mesh = new THREE.InstancedMesh( new THREE.SphereGeometry( radius, 64, 32 ), probeMaterial( volume ), volume.probeCount );
-	const index = new Float32Array( volume.probeCount ), state = new Float32Array( volume.probeCount );
+	const mesh = new THREE.InstancedMesh( new THREE.SphereGeometry( radius, 64, 32 ), probeMaterial( volume, renderer ), volume.probeCount );
+	const state = new Float32Array( volume.probeCount );
 	const matrix = new THREE.Matrix4();
 	for ( let p = 0; p < volume.probeCount; ++ p ) {
 		mesh.setMatrixAt( p, matrix.makeTranslation( probePosition( info, p ) ) );
-		index[ p ] = p;
 		state[ p ] = volume.states[ p ];
 	}
-	mesh.geometry.setAttribute( 'probeIndex', new THREE.InstancedBufferAttribute( index, 1 ) );
 	mesh.geometry.setAttribute( 'probeState', new THREE.InstancedBufferAttribute( state, 1 ) );
 	mesh.computeBoundingSphere();
 	mesh.userData.radius = radius;
@@ -227,7 +228,7 @@ async function main() {
 	controls.target.copy( centre );
 	controls.update();
 
-	const probes = probeSpheres( volume );
+	const probes = probeSpheres( volume, renderer );
 	scene.add( probes );
 	const arrows = relocationArrows( volume );
 	scene.add( arrows );
@@ -274,7 +275,14 @@ async function main() {
 		$( 'ticks' ).innerHTML = [ 0, 0.25, 0.5, 0.75, 1 ].map( ( f ) => `<span>${ ( f * top ).toPrecision( 3 ) }</span>` ).join( '' );
 		$( 'units' ).textContent = visibilityMode ? 'sky visibility V(n): 1 under open sky' : `E(n): ${ info.units }; white where E/π · exposure reaches 1`;
 	}
-	document.querySelectorAll( '#panel input, #panel select' ).forEach( ( e ) => e.addEventListener( 'input', refresh ) );
+	// Slices are decoded on the CPU: at most once a frame however fast a slider moves.
+	let pending = false;
+	const scheduleRefresh = () => {
+		if ( pending ) return;
+		pending = true;
+		requestAnimationFrame( () => { pending = false; refresh(); } );
+	};
+	document.querySelectorAll( '#panel input, #panel select' ).forEach( ( e ) => e.addEventListener( 'input', scheduleRefresh ) );
 	refresh();
 
 	// A click (not a drag) prints the point and its irradiance for the six axis normals.
