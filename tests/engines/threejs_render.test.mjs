@@ -98,6 +98,7 @@ check( ! fs.existsSync( path.join( dir, 'refused' ) ), 'a refused bake writes no
 
 const { server, url } = await serve( page, { '/node_modules/': nodeModules( sourceDir ), '/decoders/': path.join( sourceDir, 'decoders' ), '/volume/': exportDir } );
 const { browser, page: tab, errors } = await openPage( url );
+let worst = 0;
 try {
 	await tab.waitForFunction( 'window.ready === true || false', { timeout: 60000 } ).catch( () => {} );
 	check( await tab.evaluate( () => window.ready === true ), `the page loaded the grid (errors: ${ errors.join( '; ' ) })` );
@@ -116,6 +117,7 @@ try {
 		chosen.forEach( ( { normal }, n ) => {
 			const rendered = bytes[ n ].slice( 0, 3 ).map( ( b ) => srgbToLinear( b ) / exposure );
 			const brightest = Math.max( ...expected[ n ] );
+			worst = Math.max( worst, ...rendered.map( ( r, c ) => Math.abs( r - expected[ n ][ c ] ) / brightest ) );
 			for ( let c = 0; c < 3; ++ c ) {
 				const error = Math.abs( rendered[ c ] - expected[ n ][ c ] ) / brightest;
 				check( error <= TOLERANCE, `probe ${ probe } normal ${ normal.map( ( v ) => v.toFixed( 3 ) ) } channel ${ c }: ` +
@@ -126,6 +128,7 @@ try {
 		} );
 	}
 	check( errors.length === 0, `console errors: ${ errors.join( '; ' ) }` );
+	console.log( `largest difference ${ ( 100 * worst ).toFixed( 2 ) } % of the pixel's brightest channel` );
 } finally {
 	await browser.close();
 	server.close();
