@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 
 #include "bake/ProbeConvergence.h"
@@ -12,6 +13,7 @@
 #include "common/Timing.h"
 #include "scene/GltfLoader.h"
 #include "scene/SceneCensus.h"
+#include "volume/MemoryEstimate.h"
 
 namespace baker {
 namespace {
@@ -52,6 +54,36 @@ void recordSettings(const BakeJob& job, Volume& volume) {
   volume.settings["scene_fnv1a64"] = fileHash(request.scenePath);
 }
 
+// The grid at the default spacing (volume/ProbeGrid.h), widened until it fits this machine's
+// memory and the probe limit; `reason` says how the spacing was chosen, for the plan.
+ProbeGrid defaultGrid(const Eigen::AlignedBox3f& bounds, const Basis& basis, std::string& reason) {
+  const double longest = bounds.isEmpty() ? 0.0 : double(bounds.sizes().maxCoeff());
+  double spacing = defaultSpacing(bounds);
+  reason = spacing < kDefaultMaxSpacing ? fmt::format("the default: the scene's longest side ({:.4g} m) / {}", longest,
+                                                      kDefaultProbesAlongLongestSide)
+                                        : fmt::format("the default: {} m at most, in a scene {:.4g} m long",
+                                                      kDefaultMaxSpacing, longest);
+  ProbeGrid unit;  // one probe: the memory a probe of this basis takes
+  const double bytesPerProbe = volumeMemoryBytes(unit, basis);
+  const double memoryProbes = double(physicalMemoryBytes()) / bytesPerProbe;
+  const double limit = std::min(double(kMaxBakeProbes), memoryProbes);
+  const double firstSpacing = spacing;
+  double probes = probesPerAxis(bounds, spacing).prod();
+  // Each step widens by the cube root of the excess (a little more, for the rounding up of cells),
+  // which lands within a few steps.
+  for (int step = 0; probes > limit && step < 64; ++step) {
+    spacing *= std::cbrt(probes / limit) * 1.01;
+    probes = probesPerAxis(bounds, spacing).prod();
+  }
+  if (spacing != firstSpacing)
+    reason = fmt::format("widened from the default {:.4g} m, whose {:.3g} probes would need {:.3g} GiB, more than this "
+                         "machine's {:.3g} GiB (or the limit of {} probes); give a spacing to choose another",
+                         firstSpacing, probesPerAxis(bounds, firstSpacing).prod(),
+                         probesPerAxis(bounds, firstSpacing).prod() * bytesPerProbe / double(1ull << 30),
+                         double(physicalMemoryBytes()) / double(1ull << 30), kMaxBakeProbes);
+  return makeProbeGrid(bounds, spacing, kMaxBakeProbes);
+}
+
 }  // namespace
 
 BakeJob::BakeJob(BakeRequest request, RayObserver* observer) : request_(std::move(request)) {
@@ -62,7 +94,12 @@ BakeJob::BakeJob(BakeRequest request, RayObserver* observer) : request_(std::mov
   const auto start = std::chrono::steady_clock::now();
   scene_ = std::make_unique<Scene>(loadGltf(request_.scenePath, request_.scene));
   loadSeconds_ = secondsSince(start);
-  grid_ = makeProbeGrid(scene_->bounds, request_.spacing.value_or(0.0), kMaxBakeProbes);
+  if (request_.spacing) {
+    grid_ = makeProbeGrid(scene_->bounds, *request_.spacing, kMaxBakeProbes);
+    spacingReason_ = "as given";
+  } else {
+    grid_ = defaultGrid(scene_->bounds, *basis_, spacingReason_);
+  }
   plan_ = planEffects(*scene_, takeCensus(*scene_));
   turnOffEffects(plan_, request_.turnedOff);
   settings_ = bakeSettings(request_, plan_);
@@ -79,7 +116,7 @@ std::int64_t BakeJob::rayLimit() const {
 }
 
 Volume BakeJob::bake(BakeStats* stats, const std::function<void(std::int64_t, std::int64_t)>& progress) const {
-  Volume volume = bakeVolume(*scene_, *tracer_, *basis_, grid_, settings_, stats, progress);
+  Volume volume = bakeVolume(*scene_, *tracer_, *basis_, grid_, settings_, stats, progress, request_.shard);
   recordSettings(*this, volume);
   return volume;
 }

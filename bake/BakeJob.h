@@ -38,6 +38,8 @@ class BakeJob {
   const Scene& scene() const { return *scene_; }
   const RayTracer& tracer() const { return *tracer_; }
   const ProbeGrid& grid() const { return grid_; }
+  // How the grid's spacing was chosen: "as given", or the default and why it is what it is.
+  const std::string& spacingReason() const { return spacingReason_; }
   const std::vector<PlannedEffect>& plan() const { return plan_; }
   const BakeSettings& settings() const { return settings_; }
   double loadSeconds() const { return loadSeconds_; }
@@ -58,6 +60,7 @@ class BakeJob {
   std::unique_ptr<Scene> scene_;
   std::unique_ptr<RayTracer> tracer_;
   ProbeGrid grid_;
+  std::string spacingReason_;
   std::vector<PlannedEffect> plan_;
   BakeSettings settings_;
   double loadSeconds_ = 0.0, bvhSeconds_ = 0.0;

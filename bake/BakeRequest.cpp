@@ -23,6 +23,10 @@ void validateBakeRequest(const BakeRequest& r) {
   if (r.threads < 0) throw SettingError("threads", fmt::format("must be positive, got {}", r.threads));
   if (r.window.hannWidth < 0)
     throw SettingError("window", fmt::format("must be a band count >= 1, got {}", r.window.hannWidth));
+  if (r.shard && !(r.shard->count >= 1 && r.shard->count <= kMaxShards && r.shard->index >= 0 &&
+                   r.shard->index < r.shard->count))
+    throw SettingError("shard", fmt::format("must be K/N with 0 <= K < N <= {}, got {}", kMaxShards,
+                                            shardName(*r.shard)));
   requireKnownEffects(r.turnedOff);
   const std::unique_ptr<Basis> basis = makeBasis(r.basis, r.sgSharpness);
   if (r.nonNegative && !admitsNonNegativeFit(*basis))

@@ -6,6 +6,7 @@
 
 #include "basis/GramOperators.h"
 #include "scene/SceneOptions.h"
+#include "volume/Shard.h"
 
 namespace baker {
 
@@ -36,6 +37,8 @@ struct BakeRequest {
   std::vector<std::string> turnedOff;  // effects not to simulate (keys of the plan)
   BandWindow window;                   // Hann window on the SH bands before projecting
   bool nonNegative = false;            // coefficients >= 0 by a per-probe constrained solve
+  // Bake only this shard's bricks (volume/Shard.h), a part for merging; none: the whole grid.
+  std::optional<Shard> shard;
 };
 
 // Every check that needs no scene: values in range, names known, combinations that make sense.

@@ -11,6 +11,7 @@
 
 #include "bake/ProbeValidity.h"
 #include "common/Error.h"
+#include "volume/InvalidProbeFill.h"
 #include "volume/MemoryEstimate.h"
 
 namespace baker {
@@ -35,6 +36,7 @@ void bakeBrick(const RayTracer& tracer, const ProbeGrid& grid, const BakeSetting
       for (int i = lo.x(); i < hi.x(); ++i)
         candidates.push_back({grid.position(i, j, k).cast<float>(), std::uint64_t(grid.linearIndex(i, j, k)),
                               rotationOf(i, j, k)});
+  for (const ProbeTask& candidate : candidates) volume.states[candidate.id] = ProbeState::Valid;
   if (settings.transport.probeValidity) {
     const ValidityOptions validityOptions;
     // Placed side by side like the probes' tracing (ProbeBaker::bake). Isolated so that a
@@ -79,6 +81,16 @@ void requireFinite(const Volume& volume) {
                                        i / volume.visibilityPerProbe));
 }
 
+// Every brick in linear order, or the shard's.
+std::vector<std::int64_t> bricksToBake(const ProbeGrid& grid, const std::optional<Shard>& shard) {
+  if (shard) return shardBricks(grid, *shard);
+  const Eigen::Vector3i b = grid.brickCounts();
+  std::vector<std::int64_t> all(std::size_t(b.x()) * b.y() * b.z());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = std::int64_t(i);
+  return all;
+}
+
+// Probes outside the bricks baked stay Invalid (a shard's part stores none of them).
 Volume emptyVolume(const ProbeGrid& grid, const Basis& basis, const ProbeBaker& probeBaker) {
   Volume volume;
   volume.grid = grid;
@@ -88,7 +100,7 @@ Volume emptyVolume(const ProbeGrid& grid, const Basis& basis, const ProbeBaker& 
   const std::size_t probes = std::size_t(grid.probeCount());
   volume.coefficients.assign(probes * volume.coefficientsPerProbe, 0.0f);
   volume.visibility.assign(probes * volume.visibilityPerProbe, 0.0f);
-  volume.states.assign(probes, ProbeState::Valid);
+  volume.states.assign(probes, ProbeState::Invalid);
   volume.offsets.assign(probes, Eigen::Vector3f::Zero());
   return volume;
 }
@@ -97,7 +109,8 @@ Volume emptyVolume(const ProbeGrid& grid, const Basis& basis, const ProbeBaker& 
 
 Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basis, const ProbeGrid& grid,
                   const BakeSettings& settings, BakeStats* stats,
-                  const std::function<void(std::int64_t, std::int64_t)>& progress) {
+                  const std::function<void(std::int64_t, std::int64_t)>& progress,
+                  const std::optional<Shard>& shard) {
   if (settings.rays <= 0) throw SettingError("rays", fmt::format("must be positive, got {}", settings.rays));
   requireVolumeFitsInMemory(grid, basis, physicalMemoryBytes());
   const auto start = std::chrono::steady_clock::now();
@@ -107,25 +120,32 @@ Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basi
   const std::vector<Eigen::Vector3f> testDirections = validityDirections(ValidityOptions{});
 
   const Eigen::Vector3i bricks = grid.brickCounts();
-  const int brickCount = bricks.x() * bricks.y() * bricks.z();
+  const std::vector<std::int64_t> toBake = bricksToBake(grid, shard);
+  const int brickCount = int(toBake.size());
   std::vector<RayCounts> brickRays(brickCount);
   std::vector<RoundTally> brickTallies(brickCount);
   std::atomic<std::int64_t> bricksDone{0};
   tbb::parallel_for(tbb::blocked_range<int>(0, brickCount, 1), [&](const tbb::blocked_range<int>& range) {
     std::vector<float> coefficients, visibility;
-    for (int b = range.begin(); b < range.end(); ++b) {
-      const Eigen::Vector3i brick(b % bricks.x(), (b / bricks.x()) % bricks.y(), b / (bricks.x() * bricks.y()));
-      bakeBrick(tracer, grid, settings, probeBaker, testDirections, brick, volume, brickRays[b], brickTallies[b],
+    for (int n = range.begin(); n < range.end(); ++n) {
+      const std::int64_t b = toBake[n];
+      const Eigen::Vector3i brick(int(b % bricks.x()), int(b / bricks.x() % bricks.y()),
+                                  int(b / (std::int64_t(bricks.x()) * bricks.y())));
+      bakeBrick(tracer, grid, settings, probeBaker, testDirections, brick, volume, brickRays[n], brickTallies[n],
                 coefficients, visibility);
       if (progress) progress(++bricksDone, brickCount);
     }
   });
-  fillInvalidProbes(grid, volume.states, volume.coefficientsPerProbe, volume.coefficients);
-  fillInvalidProbes(grid, volume.states, volume.visibilityPerProbe, volume.visibility);
+  volume.shard = shard;
+  if (!shard) {
+    fillInvalidProbes(grid, volume.states, volume.coefficientsPerProbe, volume.coefficients);
+    fillInvalidProbes(grid, volume.states, volume.visibilityPerProbe, volume.visibility);
+  }
   requireFinite(volume);
 
   if (stats) {
-    stats->probes = grid.probeCount();
+    stats->probes = 0;
+    for (const std::int64_t b : toBake) stats->probes += std::int64_t(probesOfBrick(grid, b).size());
     stats->bricks = brickCount;
     stats->raysPerProbe = settings.rays;
     stats->rays = RayCounts{};
@@ -134,8 +154,8 @@ Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basi
     for (ProbeState s : volume.states) {
       stats->validProbes += s == ProbeState::Valid;
       stats->relocatedProbes += s == ProbeState::Relocated;
-      stats->invalidProbes += s == ProbeState::Invalid;
     }
+    stats->invalidProbes = stats->probes - stats->validProbes - stats->relocatedProbes;
     stats->conditionNumber = probeBaker.conditionNumber();
     stats->shOrder = probeBaker.shOrder();
     stats->projectionSeconds = probeBaker.projectionSeconds();

@@ -1,6 +1,7 @@
 #pragma once
 #include <cstdint>
 #include <functional>
+#include <optional>
 
 #include "bake/ProbeBaker.h"
 #include "bake/Transport.h"
@@ -33,8 +34,11 @@ struct BakeStats {
 // out or, failing that, filled from valid neighbours (ProbeValidity). The result depends on
 // settings.transport.seed and not on the number of threads.
 // `progress`, when given, hears (bricks done, bricks in all) from worker threads.
+// With `shard`, only the shard's bricks are baked and nothing is filled (Volume::shard): every
+// probe's values are the same bits as in the whole bake, and merging the parts fills them.
 Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basis, const ProbeGrid& grid,
                   const BakeSettings& settings, BakeStats* stats,
-                  const std::function<void(std::int64_t, std::int64_t)>& progress = {});
+                  const std::function<void(std::int64_t, std::int64_t)>& progress = {},
+                  const std::optional<Shard>& shard = std::nullopt);
 
 }  // namespace baker

@@ -26,7 +26,7 @@ namespace baker {
 // nearest first; each puts the probe a small margin beyond the hit along that ray, provided
 // nothing else lies within that margin, and is accepted if the probe passes the test there.
 // Only the nearest few candidates are tried, which bounds the cost. A probe with no acceptable
-// candidate is Invalid, and fillInvalidProbes gives it the mean of its valid neighbours.
+// candidate is Invalid, and fillInvalidProbes (volume/InvalidProbeFill.h) gives it the mean of its valid neighbours.
 struct ProbePlacement {
   Eigen::Vector3f offset{0.0f, 0.0f, 0.0f};  // world-space move from the grid position; zero unless Relocated
   ProbeState state = ProbeState::Valid;
@@ -47,14 +47,5 @@ std::vector<Eigen::Vector3f> validityDirections(const ValidityOptions& options);
 ProbePlacement placeProbe(const RayTracer& tracer, const Eigen::Vector3f& gridPosition, float spacing,
                           const std::vector<Eigen::Vector3f>& directions, const ValidityOptions& options,
                           std::int64_t* raysTraced);
-
-// Gives each Invalid probe (states[p]) values from its valid face neighbours, in passes: a pass
-// fills every unfilled Invalid probe with a Valid, Relocated or already filled neighbour with
-// the mean of those neighbours' values as they stood before the pass, until a pass fills none.
-// values holds valuesPerProbe floats per probe in ProbeGrid::linearIndex order; the Invalid
-// probes' own values are discarded, and those no valid probe reaches (a grid with none) get
-// zeros. Serial and order-free, so the result is the same on any machine.
-void fillInvalidProbes(const ProbeGrid& grid, const std::vector<ProbeState>& states, int valuesPerProbe,
-                       std::vector<float>& values);
 
 }  // namespace baker

@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -13,6 +14,7 @@
 #include "basis/BasisRegistry.h"
 #include "cli/BakeOptions.h"
 #include "cli/CommandLine.h"
+#include "cli/MpiBakeCommand.h"
 #include "cli/ProgressBar.h"
 #include "common/Timing.h"
 #include "formats/VolumeWriter.h"
@@ -46,6 +48,13 @@ nlohmann::json engineExportJson(const EngineExport& e) {
           {"warnings", e.warnings}};
 }
 
+nlohmann::json shardJson(const BakeJob& job) {
+  const std::optional<Shard>& shard = job.request().shard;
+  if (!shard) return nullptr;
+  return {{"index", shard->index}, {"count", shard->count},
+          {"bricks", shardBricks(job.grid(), *shard).size()}, {"bricks_in_grid", bricksInMortonOrder(job.grid()).size()}};
+}
+
 nlohmann::json bakeJson(const BakeReport& r) {
   const BakeJob& job = r.job;
   const BakeStats& stats = r.stats;
@@ -57,7 +66,8 @@ nlohmann::json bakeJson(const BakeReport& r) {
       {"basis", job.basis().name()},
       {"grid", {{"dims", {grid.dims.x(), grid.dims.y(), grid.dims.z()}},
                 {"origin", {grid.origin.x(), grid.origin.y(), grid.origin.z()}},
-                {"spacing", grid.spacing}}},
+                {"spacing", grid.spacing},
+                {"spacing_chosen", job.spacingReason()}}},
       {"probes", stats.probes},
       {"probe_states", {{"valid", stats.validProbes}, {"relocated", stats.relocatedProbes},
                         {"invalid", stats.invalidProbes}}},
@@ -82,6 +92,7 @@ nlohmann::json bakeJson(const BakeReport& r) {
       {"mrays_per_second", r.mraysPerSecond()},
       {"peak_memory_bytes", peakMemoryBytes()},
       {"engine_export", engineExportJson(r.engineExport)},
+      {"shard", shardJson(job)},
   };
 }
 
@@ -99,21 +110,42 @@ void printBakeSummary(const BakeReport& r) {
                         job.rayLimit(), stats.lattice.mostRays)
           : std::to_string(stats.raysPerProbe);
   std::cerr << fmt::format(
-      "baked {} probes ({} × {} × {}, spacing {:.4g} m; {} relocated, {} invalid and filled) × {} rays, {} "
+      "baked {} probes ({} × {} × {}, spacing {:.4g} m; {} relocated, {} invalid{}) × {} rays, {} "
       "bounce(s), in {:.2f} s ({:.1f} Mrays/s; operators {:.2f} s; load {:.2f} s, BVH {:.2f} s, write {:.2f} "
       "s; peak memory {:.0f} MiB)\n"
       "rays: {} probe, {} bounce, {} punctual shadow, {} emitter shadow, {} environment shadow, {} direct "
       "punctual shadow, {} direct view, {} direct-view shadow, {} aimed bounce, {} aimed-bounce shadow, {} validity; "
       "{} in all\n",
       stats.probes, grid.dims.x(), grid.dims.y(), grid.dims.z(), grid.spacing, stats.relocatedProbes,
-      stats.invalidProbes, raysText, job.settings().transport.bounces, stats.traceSeconds, r.mraysPerSecond(),
+      stats.invalidProbes, job.request().shard ? ", filled when the parts are merged" : " and filled", raysText, job.settings().transport.bounces, stats.traceSeconds, r.mraysPerSecond(),
       stats.operatorSeconds, job.loadSeconds(), job.bvhSeconds(), r.writeSeconds, peakMemoryBytes() / 1048576.0,
       c.probe, c.bounce, c.punctualShadow, c.emitterShadow, c.environmentShadow, c.directPunctualShadow, c.directView,
       c.directViewShadow, c.aimedBounce, c.aimedBounceShadow, c.validity, c.total());
-  std::cout << fmt::format("wrote {} ({}, {} coefficients per probe)\n", r.output.path, job.basis().name(),
-                           job.basis().totalCoefficients());
+  if (const std::optional<Shard>& shard = job.request().shard)
+    std::cout << fmt::format("wrote {}: shard {} of the bake ({} of {} bricks, {}), to merge with the other parts "
+                             "(baker merge OUT PART...)\n",
+                             r.output.path, shardName(*shard), stats.bricks, bricksInMortonOrder(grid).size(),
+                             job.basis().name());
+  else
+    std::cout << fmt::format("wrote {} ({}, {} coefficients per probe)\n", r.output.path, job.basis().name(),
+                             job.basis().totalCoefficients());
   const EngineExport& e = r.engineExport;
   if (!e.engine.empty()) std::cout << fmt::format("  for {}: {}\n", e.engine, e.conversion);
+}
+
+// A shard's part: a .vdb file or a directory of EXR slices in float, so that the merge reads back
+// the very bits the bake made; named after the shard unless --out names it.
+VolumeOutput partOutput(const BakeRequest& request, std::string out, const std::string& format) {
+  if (format == "bevy" || format == "threejs")
+    throw SettingError("format", fmt::format("{}: a shard's part is a .vdb file or an EXR directory; bake the parts "
+                                             "in one of those, then `baker merge --format {} OUT PART...` writes the "
+                                             "engine's files", format, format));
+  if (out.empty()) {
+    const Shard& s = *request.shard;
+    out = fmt::format("{}_shard-{}-of-{}{}", std::filesystem::path(request.scenePath).stem().string(), s.index,
+                      s.count, format == "exr" ? "_exr" : ".vdb");
+  }
+  return volumeOutput(request.scenePath, out, format, "float");
 }
 
 }  // namespace
@@ -134,9 +166,21 @@ int runBakeCommand(int argc, char** argv) {
                  "from --out (.vdb: vdb, else exr), vdb without --out");
   app.add_option("--precision", precision, "EXR slices: half or float")->capture_default_str();
   app.add_flag("--json", json, "print the summary as JSON on stdout");
+  std::string shardText;
+  bool mpi = false;
+  auto* shardOption = app.add_option(
+      "--shard", shardText,
+      "bake only shard K of N (0 <= K < N <= 4096, bricks in Morton order): a part for `baker merge`; parts are "
+      "written in float");
+  app.add_flag("--mpi", mpi,
+               "under mpirun: rank r bakes shard r of the ranks with its share of the cores, rank 0 writes the "
+               "whole volume (docs/SCALING.md)")
+      ->excludes(shardOption);
 
   return runGuarded("baker", app, argc, argv, [&]() {
-    const VolumeOutput output = volumeOutput(options.request.scenePath, outPath, format, precision);
+    if (!shardText.empty()) options.request.shard = requireShard(shardText);
+    const VolumeOutput output = options.request.shard ? partOutput(options.request, outPath, format)
+                                                      : volumeOutput(options.request.scenePath, outPath, format, precision);
     // EXR slices are written through the image module: a missing one fails now, not after the bake.
     if (output.format == VolumeFormat::Exr) requireImageModule();
     if (!app.count("--basis") && !preferredBasis(output).empty()) options.request.basis = preferredBasis(output);
@@ -144,13 +188,11 @@ int runBakeCommand(int argc, char** argv) {
     requireWritable(output, *basis);
     const bool nonNegativeForFormat = !options.request.nonNegative && prefersNonNegativeFit(output, *basis);
     if (nonNegativeForFormat) options.request.nonNegative = true;
+    if (mpi) return bakeOverMpi(app, options, output, {quiet, json, nonNegativeForFormat});
     const auto start = std::chrono::steady_clock::now();
     std::ostringstream silenced;
     const std::unique_ptr<BakeJob> job = prepareBake(app, options, quiet ? silenced : std::cerr);
-    if (const std::string conversion = volumeConversion(output, job->basis()); !conversion.empty())
-      (quiet ? silenced : std::cerr) << fmt::format(
-          "export for {}: {}{}\n", volumeFormatName(output.format), conversion,
-          nonNegativeForFormat ? "; the fit is solved for coefficients >= 0, which the format's texels hold" : "");
+    printExportPlan(quiet ? silenced : std::cerr, output, job->basis(), nonNegativeForFormat);
     BakeStats stats;
     BakeReport report{*job, stats, output, {}};
     auto stage = std::chrono::steady_clock::now();

@@ -6,6 +6,8 @@
 
 #include "bake/ProbeConvergence.h"
 #include "cli/SceneFlags.h"
+#include "common/Error.h"
+#include "volume/MemoryEstimate.h"
 
 namespace baker {
 
@@ -13,7 +15,7 @@ void addBakeOptions(CLI::App& app, BakeOptions& o, bool listed) {
   BakeRequest& r = o.request;
   if (listed) r.quality.clear();  // lists of ray counts: each a fixed bake
   app.add_option("scene", r.scenePath, "glTF 2.0 scene (.gltf or .glb)")->required();
-  app.add_option("--spacing", o.spacing, "probe spacing in metres; default: the longest side of the scene / 16");
+  app.add_option("--spacing", o.spacing, "probe spacing in metres; default: the longest side of the scene / 16, at most 1 m");
   if (!listed) {
     app.add_option("--basis", r.basis, "basis to store (see `baker bases`)")->capture_default_str();
     auto* quality = app.add_option("--quality", r.quality,
@@ -55,6 +57,10 @@ BakeRequest bakeRequest(const CLI::App& app, const BakeOptions& options) {
 std::unique_ptr<BakeJob> prepareBake(const CLI::App& app, const BakeOptions& options, std::ostream& log) {
   auto job = std::make_unique<BakeJob>(bakeRequest(app, options));
   for (const std::string& w : job->scene().warnings) log << "baker: warning: " << w << "\n";
+  const ProbeGrid& g = job->grid();
+  log << fmt::format("grid: {} × {} × {} = {} probes, spacing {:.4g} m ({}), {:.3g} GiB at the peak\n", g.dims.x(),
+                     g.dims.y(), g.dims.z(), g.probeCount(), g.spacing, job->spacingReason(),
+                     volumeMemoryBytes(g, job->basis()) / double(1ull << 30));
   printPlan(log, job->plan());
   return job;
 }
@@ -63,6 +69,19 @@ void printPlan(std::ostream& out, const std::vector<PlannedEffect>& plan) {
   out << "plan:\n";
   for (const PlannedEffect& e : plan)
     out << fmt::format("  {:<16} {:<3}  {}\n", e.name, e.simulated ? "on" : "off", e.reason);
+}
+
+void printExportPlan(std::ostream& log, const VolumeOutput& output, const Basis& basis, bool nonNegativeForFormat) {
+  if (const std::string conversion = volumeConversion(output, basis); !conversion.empty())
+    log << fmt::format("export for {}: {}{}\n", volumeFormatName(output.format), conversion,
+                       nonNegativeForFormat ? "; the fit is solved for coefficients >= 0, which the format's texels hold"
+                                            : "");
+}
+
+Shard requireShard(const std::string& text) {
+  const std::optional<Shard> shard = parseShard(text);
+  if (!shard) throw SettingError("shard", fmt::format("{}: expected K/N, whole numbers with 0 <= K < N <= {}", text, kMaxShards));
+  return *shard;
 }
 
 nlohmann::json planJson(const std::vector<PlannedEffect>& plan) {

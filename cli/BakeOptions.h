@@ -9,6 +9,7 @@
 #include "bake/BakeJob.h"
 #include "bake/BakeRequest.h"
 #include "bake/Transport.h"
+#include "formats/VolumeWriter.h"
 #include "scene/SceneEffects.h"
 
 namespace baker {
@@ -30,6 +31,10 @@ BakeRequest bakeRequest(const CLI::App& app, const BakeOptions& options);
 std::unique_ptr<BakeJob> prepareBake(const CLI::App& app, const BakeOptions& options, std::ostream& log);
 
 void printPlan(std::ostream& out, const std::vector<PlannedEffect>& plan);
+// The line saying how an engine's format will hold the basis (nothing for baker's own formats).
+void printExportPlan(std::ostream& log, const VolumeOutput& output, const Basis& basis, bool nonNegativeForFormat);
+// The shard --shard K/N names; SettingError("shard") otherwise.
+Shard requireShard(const std::string& text);
 nlohmann::json planJson(const std::vector<PlannedEffect>& plan);
 nlohmann::json rayCountsJson(const RayCounts& rays);
 

@@ -39,6 +39,14 @@ int runGuarded(const std::string& command, CLI::App& app, int argc, char** argv,
   }
   try {
     return body();
+  } catch (...) {
+    return reportFailure(command, std::current_exception());
+  }
+}
+
+int reportFailure(const std::string& command, std::exception_ptr failure) {
+  try {
+    std::rethrow_exception(failure);
   } catch (const InputError& e) {
     std::cerr << fmt::format("{}: error: {}\n", command, commandLineMessage(e));
     return 2;

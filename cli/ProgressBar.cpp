@@ -1,7 +1,6 @@
 #include "cli/ProgressBar.h"
 
 #include <fmt/format.h>
-#include <sys/resource.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -33,12 +32,6 @@ void ProgressBar::update(std::int64_t done, std::int64_t total) {
                  .c_str(),
              stderr);
   std::fflush(stderr);
-}
-
-std::uint64_t peakMemoryBytes() {
-  struct rusage usage {};
-  ::getrusage(RUSAGE_SELF, &usage);
-  return std::uint64_t(usage.ru_maxrss) * 1024;  // Linux reports KiB
 }
 
 }  // namespace baker

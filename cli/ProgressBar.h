@@ -4,6 +4,8 @@
 #include <mutex>
 #include <string>
 
+#include "common/PeakMemory.h"
+
 namespace baker {
 
 // A progress bar with an ETA on stderr, for work that takes longer than a second. It stays
@@ -22,8 +24,5 @@ class ProgressBar {
   std::chrono::steady_clock::time_point start_, lastDraw_;
   std::mutex mutex_;
 };
-
-// Peak resident memory of this process so far, in bytes.
-std::uint64_t peakMemoryBytes();
 
 }  // namespace baker

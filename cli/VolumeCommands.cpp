@@ -106,15 +106,22 @@ int runInspectCommand(int argc, char** argv) {
           {"visibility_per_probe", v.visibilityPerProbe},
           {"probe_states", {{"valid", counts[1]}, {"relocated", counts[2]}, {"invalid", counts[0]}}},
           {"grids", grids},
-          {"settings", v.settings}};
+          {"settings", v.settings},
+          {"shard", v.shard ? nlohmann::json{{"index", v.shard->index}, {"count", v.shard->count},
+                                             {"bricks", shardBricks(g, *v.shard).size()}}
+                            : nlohmann::json(nullptr)}};
       std::cout << j.dump(2) << "\n";
       return 0;
     }
     std::cout << fmt::format("{}: {} bytes, basis {}, {} × {} × {} probes ({}), spacing {:.6g}, origin ({:.6g}, {:.6g}, {:.6g})\n",
                              path, bytes, v.basisName, g.dims.x(), g.dims.y(), g.dims.z(), g.probeCount(), g.spacing,
                              g.origin.x(), g.origin.y(), g.origin.z());
-    std::cout << fmt::format("probes: {} valid, {} relocated, {} invalid (filled from neighbours)\n", counts[1], counts[2],
-                             counts[0]);
+    if (v.shard)
+      std::cout << fmt::format("part: shard {} of a bake ({} of {} bricks); probes outside it count as invalid here, "
+                               "and invalid probes are filled when the parts are merged (baker merge)\n",
+                               shardName(*v.shard), shardBricks(g, *v.shard).size(), bricksInMortonOrder(g).size());
+    std::cout << fmt::format("probes: {} valid, {} relocated, {} invalid{}\n", counts[1], counts[2], counts[0],
+                             v.shard ? "" : " (filled from neighbours)");
     for (const nlohmann::json& grid : grids)
       std::cout << fmt::format("  {:<16} {}  [{:.6g}, {:.6g}]\n", grid["name"].get<std::string>(),
                                grid["components"].get<int>() == 3 ? "vec3 " : "float", grid["min"].get<float>(),

@@ -10,6 +10,7 @@
 #include "cli/BasesCommand.h"
 #include "cli/EnvCommand.h"
 #include "cli/InfoCommand.h"
+#include "cli/MergeCommand.h"
 #include "cli/PreviewCommand.h"
 #include "cli/ProbeCommand.h"
 #include "cli/ValidateCommand.h"
@@ -29,6 +30,8 @@ struct Command {
 const std::vector<Command>& commands() {
   static const std::vector<Command> all = {
       {"bake", "baker SCENE [OPTIONS]", "bake an irradiance volume for a glTF scene", baker::runBakeCommand},
+      {"merge", "baker merge OUT PART...", "the parts of a bake cut into shards, as one volume",
+       baker::runMergeCommand},
       {"probe", "baker probe SCENE --at x,y,z", "bake single probes and print what they receive",
        baker::runProbeCommand},
       {"info", "baker info SCENE", "what baker loads from a scene and which effects a bake simulates",

@@ -63,6 +63,7 @@ Volume VolumeHeader::emptyVolume(const std::string& path) const {
   volume.coefficientsPerProbe = coefficientsPerProbe;
   volume.visibilityPerProbe = visibilityPerProbe;
   readSettings(text, volume);
+  readShard(text, volume, path);
   prepareForReading(volume, hasProbeStates);
   return volume;
 }

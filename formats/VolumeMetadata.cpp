@@ -2,7 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
+
+#include "common/Error.h"
 
 #include "formats/ReconstructionData.h"
 #include "formats/VolumeLayout.h"
@@ -46,6 +49,14 @@ std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume
       {"baker.reconstruction", reconstructionData(basis).dump()},
   };
   for (const auto& [key, value] : volume.settings) meta.push_back({"baker.setting." + key, value});
+  if (volume.shard) {
+    meta.push_back({"baker.shard", shardName(*volume.shard)});
+    meta.push_back({"baker.shard.bricks", std::to_string(shardBricks(volume.grid, *volume.shard).size())});
+    meta.push_back({"baker.shard.fingerprint", bakeFingerprint(volume.basisName, volume.grid, volume.settings)});
+    meta.push_back({"baker.shard.note",
+                    "one part of a bake cut into shards: only the shard's bricks are stored, and its invalid probes "
+                    "are filled from their neighbours when the parts are merged"});
+  }
   return meta;
 }
 
@@ -73,6 +84,16 @@ void readSettings(const std::vector<std::pair<std::string, std::string>>& metada
   const std::string prefix = "baker.setting.";
   for (const auto& [key, value] : metadata)
     if (key.rfind(prefix, 0) == 0) volume.settings[key.substr(prefix.size())] = value;
+}
+
+void readShard(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume,
+               const std::string& path) {
+  const auto entry = std::find_if(metadata.begin(), metadata.end(), [](const auto& e) { return e.first == "baker.shard"; });
+  if (entry == metadata.end()) return;
+  volume.shard = parseShard(entry->second);
+  if (!volume.shard)
+    throw InputError(fmt::format("{}: baker.shard \"{}\" is not K/N with 0 <= K < N <= {}", path, entry->second,
+                                 kMaxShards));
 }
 
 }  // namespace baker

@@ -31,4 +31,10 @@ constexpr int kVolumeFormatVersion = 3;
 // Recovers volume.settings from "baker.setting.*" keys.
 void readSettings(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume);
 
+// Recovers volume.shard from "baker.shard" ("K/N"), the key a shard's part carries beside
+// "baker.shard.bricks", "baker.shard.fingerprint" (volume/Shard.h, bakeFingerprint) and a note.
+// InputError naming `path` and the key when it is not a shard of at most kMaxShards.
+void readShard(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume,
+               const std::string& path);
+
 }  // namespace baker

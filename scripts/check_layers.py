@@ -20,6 +20,8 @@ MAY_INCLUDE = {
     # The browser viewer's page: a volume as files a page loads (with its scene's files, confined
     # as the loader confines them), and a server for them.
     "viewer": {"common", "images", "scene", "basis", "volume", "formats", "viewer"},
+    # A bake spread over MPI ranks: each bakes a shard, rank 0 assembles and writes.
+    "scaleout": {"common", "images", "scene", "basis", "volume", "bake", "formats", "scaleout"},
 }
 LIBRARY = set(MAY_INCLUDE)
 INCLUDE = re.compile(r'^\s*#\s*include\s+[<"]([^">]+)[">]')

@@ -7,7 +7,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   libembree-dev libtinygltf-dev libopenimageio-dev libopenexr-dev libopenvdb-dev libboost-iostreams-dev
-  libtbb-dev libeigen3-dev libcli11-dev nlohmann-json3-dev libfmt-dev libgtest-dev
+  libtbb-dev libeigen3-dev libcli11-dev nlohmann-json3-dev libfmt-dev libgtest-dev libopenmpi-dev openmpi-bin
   libopenvdb-tools openexr openimageio-tools glslang-tools
   chromium
 )

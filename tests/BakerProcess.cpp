@@ -21,10 +21,12 @@ std::string takeText(const std::string& path) {
 
 }  // namespace
 
-ProcessResult runBaker(const std::string& dir, const std::string& args) {
+ProcessResult runBaker(const std::string& dir, const std::string& args) { return runBakerUnder(dir, "", args); }
+
+ProcessResult runBakerUnder(const std::string& dir, const std::string& launcher, const std::string& args) {
   const std::string outFile = dir + "/.stdout.txt", errFile = dir + "/.stderr.txt";
-  const std::string command =
-      "cd '" + dir + "' && '" BAKER_BINARY "' " + args + " > '" + outFile + "' 2> '" + errFile + "'";
+  const std::string command = "cd '" + dir + "' && " + launcher + " '" BAKER_BINARY "' " + args + " > '" + outFile +
+                              "' 2> '" + errFile + "'";
   const int status = std::system(command.c_str());
   ProcessResult run;
   run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -33,14 +35,18 @@ ProcessResult runBaker(const std::string& dir, const std::string& args) {
   return run;
 }
 
-ProcessResult runBaker(const std::string& dir, const std::vector<std::string>& args) {
+std::string shellWords(const std::vector<std::string>& args) {
   std::string words;
   for (const std::string& arg : args) {
     std::string quoted = "'";
     for (char c : arg) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
     words += quoted + "' ";
   }
-  return runBaker(dir, words);
+  return words;
+}
+
+ProcessResult runBaker(const std::string& dir, const std::vector<std::string>& args) {
+  return runBaker(dir, shellWords(args));
 }
 
 }  // namespace baker::test

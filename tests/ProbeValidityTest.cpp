@@ -9,6 +9,7 @@
 #include "scene/GltfLoader.h"
 #include "scene/RayTracer.h"
 #include "tests/GltfTestAssets.h"
+#include "volume/InvalidProbeFill.h"
 #include "tests/TestData.h"
 
 namespace baker {

@@ -9,16 +9,16 @@
 
 namespace baker {
 
-ProbeGrid makeProbeGrid(const Eigen::AlignedBox3f& bounds, double spacing, std::int64_t maxProbes) {
-  ProbeGrid grid;
-  if (bounds.isEmpty()) {
-    grid.spacing = spacing > 0.0 ? spacing : 1.0;
-    return grid;
-  }
+double defaultSpacing(const Eigen::AlignedBox3f& bounds) {
+  const double longest = bounds.isEmpty() ? 0.0 : double(bounds.sizes().maxCoeff());
+  return longest > 0.0 ? std::min(longest / kDefaultProbesAlongLongestSide, kDefaultMaxSpacing) : kDefaultMaxSpacing;
+}
+
+Eigen::Vector3d probesPerAxis(const Eigen::AlignedBox3f& bounds, double spacing) {
+  if (bounds.isEmpty()) return Eigen::Vector3d::Ones();
   const Eigen::Vector3d lo = bounds.min().cast<double>(), hi = bounds.max().cast<double>();
   const Eigen::Vector3d extent = hi - lo;
-  if (spacing <= 0.0) spacing = extent.maxCoeff() > 0.0 ? extent.maxCoeff() / kDefaultProbesAlongLongestSide : 1.0;
-  double cells[3];
+  Eigen::Vector3d cells;
   for (int a = 0; a < 3; ++a) {
     // A flat scene (a ground plane, a panel) has no extent across itself: one layer of probes
     // centred on it would lie in its plane and see through it, so it gets a layer on each side.
@@ -27,6 +27,22 @@ ProbeGrid makeProbeGrid(const Eigen::AlignedBox3f& bounds, double spacing, std::
     // steps longer, at any scale; that must not add a layer of probes.
     const double rounding = 4.0 * std::numeric_limits<float>::epsilon() * std::max(std::abs(lo[a]), std::abs(hi[a]));
     cells[a] = flat ? 2.0 : std::max(1.0, std::ceil((extent[a] - rounding) / spacing - 1e-9));
+  }
+  return cells;
+}
+
+ProbeGrid makeProbeGrid(const Eigen::AlignedBox3f& bounds, double spacing, std::int64_t maxProbes) {
+  ProbeGrid grid;
+  if (spacing <= 0.0) spacing = defaultSpacing(bounds);
+  if (bounds.isEmpty()) {
+    grid.spacing = spacing;
+    return grid;
+  }
+  const Eigen::Vector3d lo = bounds.min().cast<double>(), hi = bounds.max().cast<double>();
+  const Eigen::Vector3d extent = hi - lo;
+  const Eigen::Vector3d cellCounts = probesPerAxis(bounds, spacing);
+  const double cells[3] = {cellCounts.x(), cellCounts.y(), cellCounts.z()};
+  for (int a = 0; a < 3; ++a) {
     if (cells[a] > double(maxProbes))
       throw SettingError("spacing", fmt::format("{} m gives {:.3g} probes along one axis of a {:.3g} m scene; the limit is {}",
                                                 spacing, cells[a], extent[a], maxProbes));

@@ -22,13 +22,23 @@ struct ProbeGrid {
   Eigen::Vector3i brickCounts() const { return (dims.array() + kBrickSize - 1) / kBrickSize; }
 };
 
-// The probes per axis the default spacing aims for along the longest side of the scene.
+// The default spacing aims for this many probes along the longest side of a small scene...
 constexpr int kDefaultProbesAlongLongestSide = 16;
+// ...and is never wider than this (metres): what engines default to, and what a level designer
+// accepts in a scene larger than a room.
+constexpr double kDefaultMaxSpacing = 1.0;
+
+// The default spacing for a scene of these bounds: its longest side / 16, at most 1 m.
+double defaultSpacing(const Eigen::AlignedBox3f& bounds);
+
+// Probes per axis a grid of `spacing` over `bounds` has (as makeProbeGrid lays it out), as
+// doubles so that no spacing overflows them.
+Eigen::Vector3d probesPerAxis(const Eigen::AlignedBox3f& bounds, double spacing);
 
 // Cells of `spacing` covering `bounds`, one probe at each cell centre, the whole grid centred
 // on the bounds: probes stay half a cell away from the outer walls of a closed room. An axis
 // along which the scene is flat gets two probes, half a cell to either side of it.
-// spacing <= 0 picks the default. An empty scene gets a single probe at the origin.
+// spacing <= 0 picks defaultSpacing. An empty scene gets a single probe at the origin.
 // Throws InputError if the grid would exceed `maxProbes`.
 ProbeGrid makeProbeGrid(const Eigen::AlignedBox3f& bounds, double spacing, std::int64_t maxProbes);
 

@@ -1,11 +1,13 @@
 #pragma once
 #include <Eigen/Core>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "volume/ProbeGrid.h"
 #include "volume/ProbeState.h"
+#include "volume/Shard.h"
 
 namespace baker {
 
@@ -26,6 +28,9 @@ struct Volume {
   std::vector<Eigen::Vector3f> offsets;
   // What produced it (rays, scene file, ...): written to the file's metadata as it is.
   std::map<std::string, std::string> settings;
+  // Set on a part of a bake cut into shards: only the shard's bricks were baked (every other
+  // probe is Invalid and zero), and its Invalid probes are not filled until the parts are merged.
+  std::optional<Shard> shard;
 
   const float* probe(std::int64_t index) const { return coefficients.data() + index * coefficientsPerProbe; }
 };

@@ -1,0 +1,79 @@
+#include "scaleout/MpiBake.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <thread>
+
+#include "common/Error.h"
+#include "common/PeakMemory.h"
+#include "common/Timing.h"
+#include "volume/VolumeAssembly.h"
+
+namespace baker {
+namespace {
+
+// What each rank tells rank 0 about itself, in this order.
+std::vector<double> rankSummary(const MpiBakeReport& report, int threads) {
+  const BakeStats& s = report.stats;
+  return {double(threads),       double(s.probes),          double(s.validProbes), double(s.relocatedProbes),
+          double(s.invalidProbes), double(s.rays.total()), report.bakeSeconds,  double(peakMemoryBytes())};
+}
+constexpr std::size_t kSummaryValues = 8;
+
+void readSummaries(const std::vector<double>& all, MpiBakeReport& report) {
+  for (std::size_t r = 0; r * kSummaryValues < all.size(); ++r) {
+    const double* v = all.data() + r * kSummaryValues;
+    report.ranks.push_back({int(r), int(v[0]), std::int64_t(v[1]), std::int64_t(v[5]), v[6], v[7]});
+    report.probes += std::int64_t(v[1]);
+    report.validProbes += std::int64_t(v[2]);
+    report.relocatedProbes += std::int64_t(v[3]);
+    report.invalidProbes += std::int64_t(v[4]);
+    report.raysTraced += std::int64_t(v[5]);
+  }
+}
+
+}  // namespace
+
+int threadsPerRank(const MpiSession& session, int requestedThreads) {
+  if (requestedThreads > 0) return requestedThreads;
+  const int cores = int(std::max(1u, std::thread::hardware_concurrency()));
+  return std::max(1, cores / std::max(1, session.ranksOnThisMachine()));
+}
+
+MpiBakeReport bakeWithMpi(const MpiSession& session, const BakeJob& job, const VolumeOutput& output,
+                          const std::function<void(std::int64_t, std::int64_t)>& progress) {
+  const std::optional<Shard>& shard = job.request().shard;
+  if (!shard || shard->index != session.rank() || shard->count != session.size())
+    throw std::logic_error("bakeWithMpi: the job's shard must be rank/size");
+  MpiBakeReport report;
+  const auto start = std::chrono::steady_clock::now();
+  const Volume part = job.bake(&report.stats, progress);
+  report.bakeSeconds = secondsSince(start);
+  const std::vector<double> summaries =
+      session.gatherToRoot(rankSummary(report, job.request().threads));
+  const std::vector<std::int64_t> bricks = shardBricks(part.grid, *shard);
+  if (session.rank() != 0) {
+    session.sendToRoot(packBricks(part, bricks));
+    return report;
+  }
+  readSummaries(summaries, report);
+  const auto gatherStart = std::chrono::steady_clock::now();
+  VolumeAssembly assembly(part, fmt::format("rank 0"));
+  assembly.addPacked(*shard, packBricks(part, bricks));
+  for (int r = 1; r < session.size(); ++r) {
+    const Shard theirs{r, session.size()};
+    std::vector<float> values(packedSize(part.grid, shardBricks(part.grid, theirs), part.coefficientsPerProbe,
+                                         part.visibilityPerProbe));
+    session.receiveFrom(r, values);
+    assembly.addPacked(theirs, values);
+  }
+  const Volume whole = assembly.finish();
+  report.gatherSeconds = secondsSince(gatherStart);
+  const auto writeStart = std::chrono::steady_clock::now();
+  report.engineExport = writeVolume(whole, job.basis(), output);
+  report.writeSeconds = secondsSince(writeStart);
+  return report;
+}
+
+}  // namespace baker

@@ -1,0 +1,81 @@
+#include "volume/InvalidProbeFill.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace baker {
+
+void fillInvalidProbes(const ProbeGrid& grid, const std::vector<ProbeState>& states, int valuesPerProbe,
+                       std::vector<float>& values) {
+  const std::int64_t probes = grid.probeCount();
+  if (valuesPerProbe < 0 || std::int64_t(states.size()) != probes ||
+      std::int64_t(values.size()) != probes * valuesPerProbe)
+    throw std::invalid_argument("fillInvalidProbes: states and values do not match the grid");
+  const std::size_t width = std::size_t(valuesPerProbe);
+  const std::int64_t dx = grid.dims.x(), dy = grid.dims.y(), dz = grid.dims.z();
+  // Face neighbours are the nearest valid data, and every probe of the grid is reached through
+  // them; the 26 would add corners √3 spacings away without reaching anything new.
+  const auto forEachFaceNeighbour = [&](std::int64_t p, auto&& visit) {
+    const std::int64_t i = p % dx, j = (p / dx) % dy, k = p / (dx * dy);
+    if (i > 0) visit(p - 1);
+    if (i + 1 < dx) visit(p + 1);
+    if (j > 0) visit(p - dx);
+    if (j + 1 < dy) visit(p + dx);
+    if (k > 0) visit(p - dx * dy);
+    if (k + 1 < dz) visit(p + dx * dy);
+  };
+
+  // Known probes can feed their neighbours; a queued one is filled by the current pass and
+  // becomes known only after it, so a pass reads nothing it wrote itself.
+  enum Mark : std::uint8_t { kUnknown, kQueued, kKnown };
+  std::vector<Mark> marks(std::size_t(probes), kKnown);
+  for (std::int64_t p = 0; p < probes; ++p)
+    if (states[p] == ProbeState::Invalid) {
+      marks[p] = kUnknown;
+      std::fill_n(values.begin() + p * valuesPerProbe, width, 0.0f);
+    }
+
+  std::vector<std::int64_t> frontier;
+  for (std::int64_t p = 0; p < probes; ++p) {
+    if (marks[p] != kUnknown) continue;
+    bool besideKnown = false;
+    forEachFaceNeighbour(p, [&](std::int64_t n) { besideKnown |= marks[n] == kKnown; });
+    if (besideKnown) {
+      marks[p] = kQueued;
+      frontier.push_back(p);
+    }
+  }
+
+  std::vector<float> means;
+  std::vector<double> sum(width);
+  std::vector<std::int64_t> next;
+  while (!frontier.empty()) {
+    means.assign(frontier.size() * width, 0.0f);
+    for (std::size_t f = 0; f < frontier.size(); ++f) {
+      std::fill(sum.begin(), sum.end(), 0.0);
+      int sources = 0;
+      forEachFaceNeighbour(frontier[f], [&](std::int64_t n) {
+        if (marks[n] != kKnown) return;
+        ++sources;
+        for (std::size_t c = 0; c < width; ++c) sum[c] += values[n * valuesPerProbe + c];
+      });
+      // Every queued probe has a known neighbour: that is how it was queued.
+      for (std::size_t c = 0; c < width; ++c) means[f * width + c] = float(sum[c] / sources);
+    }
+    next.clear();
+    for (std::size_t f = 0; f < frontier.size(); ++f) {
+      const std::int64_t p = frontier[f];
+      std::copy_n(means.begin() + f * width, width, values.begin() + p * valuesPerProbe);
+      marks[p] = kKnown;
+    }
+    for (const std::int64_t p : frontier)
+      forEachFaceNeighbour(p, [&](std::int64_t n) {
+        if (marks[n] != kUnknown) return;
+        marks[n] = kQueued;
+        next.push_back(n);
+      });
+    frontier.swap(next);
+  }
+}
+
+}  // namespace baker

@@ -1,0 +1,108 @@
+#include "volume/Shard.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <charconv>
+
+#include "common/Fnv1a64.h"
+
+namespace baker {
+namespace {
+
+// x's low 21 bits spread to every third bit.
+std::uint64_t spreadBits(std::uint64_t x) {
+  x &= 0x1fffff;
+  x = (x | x << 32) & 0x1f00000000ffffULL;
+  x = (x | x << 16) & 0x1f0000ff0000ffULL;
+  x = (x | x << 8) & 0x100f00f00f00f00fULL;
+  x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
+  x = (x | x << 2) & 0x1249249249249249ULL;
+  return x;
+}
+
+// Where shard `index` of `count` starts in the Morton order of `bricks` bricks.
+std::int64_t shardStart(std::int64_t bricks, int index, int count) { return bricks * index / count; }
+
+}  // namespace
+
+std::string shardName(const Shard& shard) { return fmt::format("{}/{}", shard.index, shard.count); }
+
+std::optional<Shard> parseShard(const std::string& text) {
+  const std::size_t slash = text.find('/');
+  if (slash == std::string::npos) return std::nullopt;
+  Shard shard;
+  const auto number = [](const char* first, const char* last, int& value) {
+    const auto [end, error] = std::from_chars(first, last, value);
+    return first != last && error == std::errc() && end == last;
+  };
+  if (!number(text.data(), text.data() + slash, shard.index) ||
+      !number(text.data() + slash + 1, text.data() + text.size(), shard.count))
+    return std::nullopt;
+  if (shard.count < 1 || shard.count > kMaxShards || shard.index < 0 || shard.index >= shard.count) return std::nullopt;
+  return shard;
+}
+
+std::vector<std::int64_t> bricksInMortonOrder(const ProbeGrid& grid) {
+  const Eigen::Vector3i b = grid.brickCounts();
+  std::vector<std::pair<std::uint64_t, std::int64_t>> keyed;
+  keyed.reserve(std::size_t(b.x()) * b.y() * b.z());
+  for (int z = 0; z < b.z(); ++z)
+    for (int y = 0; y < b.y(); ++y)
+      for (int x = 0; x < b.x(); ++x)
+        keyed.push_back({spreadBits(x) | spreadBits(y) << 1 | spreadBits(z) << 2,
+                         x + std::int64_t(b.x()) * (y + std::int64_t(b.y()) * z)});
+  // Codes are unique (brick coordinates are below 2^21), so the order is total.
+  std::sort(keyed.begin(), keyed.end());
+  std::vector<std::int64_t> order(keyed.size());
+  std::transform(keyed.begin(), keyed.end(), order.begin(), [](const auto& k) { return k.second; });
+  return order;
+}
+
+std::vector<std::int64_t> shardBricks(const ProbeGrid& grid, const Shard& shard) {
+  const std::vector<std::int64_t> order = bricksInMortonOrder(grid);
+  const std::int64_t n = std::int64_t(order.size());
+  return {order.begin() + shardStart(n, shard.index, shard.count),
+          order.begin() + shardStart(n, shard.index + 1, shard.count)};
+}
+
+std::vector<int> shardOfBricks(const ProbeGrid& grid, int count) {
+  const std::vector<std::int64_t> order = bricksInMortonOrder(grid);
+  const std::int64_t n = std::int64_t(order.size());
+  std::vector<int> shardOf(order.size(), 0);
+  for (int s = 0; s < count; ++s)
+    for (std::int64_t r = shardStart(n, s, count); r < shardStart(n, s + 1, count); ++r) shardOf[order[r]] = s;
+  return shardOf;
+}
+
+std::vector<std::int64_t> probesOfBrick(const ProbeGrid& grid, std::int64_t brick) {
+  const Eigen::Vector3i b = grid.brickCounts();
+  const Eigen::Vector3i lo = kBrickSize * Eigen::Vector3i(int(brick % b.x()), int(brick / b.x() % b.y()),
+                                                          int(brick / (std::int64_t(b.x()) * b.y())));
+  const Eigen::Vector3i hi = (lo.array() + kBrickSize).min(grid.dims.array());
+  std::vector<std::int64_t> probes;
+  probes.reserve(std::size_t(kBrickSize * kBrickSize * kBrickSize));
+  for (int k = lo.z(); k < hi.z(); ++k)
+    for (int j = lo.y(); j < hi.y(); ++j)
+      for (int i = lo.x(); i < hi.x(); ++i) probes.push_back(grid.linearIndex(i, j, k));
+  return probes;
+}
+
+std::string bakeFingerprint(const std::string& basisName, const ProbeGrid& grid,
+                            const std::map<std::string, std::string>& settings) {
+  Fnv1a64 hash;
+  const auto text = [&](const std::string& s) {
+    hash.add(s.data(), s.size());
+    hash.add("\0", 1);  // "ab"+"c" and "a"+"bc" hash differently
+  };
+  text(basisName);
+  text(fmt::format("{} {} {} {:.17g} {:.17g} {:.17g} {:.17g}", grid.dims.x(), grid.dims.y(), grid.dims.z(),
+                   grid.origin.x(), grid.origin.y(), grid.origin.z(), grid.spacing));
+  for (const auto& [key, value] : settings) {  // std::map: in key order
+    text(key);
+    text(value);
+  }
+  return fmt::format("{:016x}", hash.value());
+}
+
+}  // namespace baker

@@ -1,0 +1,153 @@
+#include "volume/VolumeAssembly.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "common/Error.h"
+#include "volume/InvalidProbeFill.h"
+
+namespace baker {
+namespace {
+
+std::string vectorText(const Eigen::Vector3d& v) { return fmt::format("({:.17g}, {:.17g}, {:.17g})", v.x(), v.y(), v.z()); }
+
+// InputError naming `name` and the first field in which `part` is not the same bake as `first`.
+void requireSameBake(const Volume& part, const std::string& name, const Volume& first, const std::string& firstName) {
+  const auto mismatch = [&](const std::string& field, const std::string& here, const std::string& there) {
+    throw InputError(fmt::format("{}: {} is {}, but {} has {}: the parts are not of one bake", name, field, here,
+                                 firstName, there));
+  };
+  if (!part.shard) throw InputError(fmt::format("{}: not a shard's part (no baker.shard); a part is baked as one shard of a bake", name));
+  if (part.shard->count != first.shard->count)
+    mismatch("baker.shard", shardName(*part.shard), fmt::format("a part of {} shards", first.shard->count));
+  if (part.basisName != first.basisName) mismatch("baker.basis", part.basisName, first.basisName);
+  const ProbeGrid &g = part.grid, &f = first.grid;
+  if (g.dims != f.dims)
+    mismatch("baker.dims", fmt::format("({}, {}, {})", g.dims.x(), g.dims.y(), g.dims.z()),
+             fmt::format("({}, {}, {})", f.dims.x(), f.dims.y(), f.dims.z()));
+  if (g.origin != f.origin) mismatch("baker.origin", vectorText(g.origin), vectorText(f.origin));
+  if (g.spacing != f.spacing) mismatch("baker.spacing", fmt::format("{:.17g}", g.spacing), fmt::format("{:.17g}", f.spacing));
+  if (part.coefficientsPerProbe != first.coefficientsPerProbe)
+    mismatch("baker.coefficients_per_probe", std::to_string(part.coefficientsPerProbe),
+             std::to_string(first.coefficientsPerProbe));
+  if (part.visibilityPerProbe != first.visibilityPerProbe)
+    mismatch("baker.visibility_per_probe", std::to_string(part.visibilityPerProbe),
+             std::to_string(first.visibilityPerProbe));
+  const auto setting = [](const Volume& v, const std::string& key) {
+    const auto it = v.settings.find(key);
+    return it == v.settings.end() ? std::string("none") : "\"" + it->second + "\"";
+  };
+  if (setting(part, "scene_fnv1a64") != setting(first, "scene_fnv1a64"))
+    throw InputError(fmt::format("{}: baked from another scene (baker.setting.scene_fnv1a64 is {}, {} has {})", name,
+                                 setting(part, "scene_fnv1a64"), firstName, setting(first, "scene_fnv1a64")));
+  for (const Volume* v : {&part, &first})
+    for (const auto& [key, value] : v->settings)
+      if (setting(part, key) != setting(first, key))
+        mismatch("baker.setting." + key, setting(part, key), setting(first, key));
+}
+
+}  // namespace
+
+VolumeAssembly::VolumeAssembly(const Volume& first, const std::string& firstName) : firstName_(firstName) {
+  if (!first.shard)
+    throw InputError(fmt::format("{}: not a shard's part (no baker.shard); a part is baked as one shard of a bake", firstName));
+  whole_.grid = first.grid;
+  whole_.basisName = first.basisName;
+  whole_.coefficientsPerProbe = first.coefficientsPerProbe;
+  whole_.visibilityPerProbe = first.visibilityPerProbe;
+  whole_.settings = first.settings;
+  whole_.shard = first.shard;
+  const std::size_t probes = std::size_t(first.grid.probeCount());
+  whole_.coefficients.assign(probes * first.coefficientsPerProbe, 0.0f);
+  whole_.visibility.assign(probes * first.visibilityPerProbe, 0.0f);
+  whole_.states.assign(probes, ProbeState::Invalid);
+  whole_.offsets.assign(probes, Eigen::Vector3f::Zero());
+  given_.assign(std::size_t(first.shard->count), "");
+}
+
+void VolumeAssembly::claim(const Shard& shard, const std::string& name) {
+  std::string& holder = given_[std::size_t(shard.index)];
+  if (!holder.empty())
+    throw InputError(fmt::format("{}: shard {} is given twice (also by {}); give each part once", name,
+                                 shardName(shard), holder));
+  holder = name;
+}
+
+void VolumeAssembly::add(const Volume& part, const std::string& name) {
+  requireSameBake(part, name, whole_, firstName_);
+  if (part.states.empty()) throw InputError(fmt::format("{}: has no probe_state grid; a shard's part has one", name));
+  const Shard shard = *part.shard;
+  // A probe baked outside the part's own bricks would be a brick given twice, or a part of
+  // another partition.
+  const std::vector<int> shardOf = shardOfBricks(part.grid, shard.count);
+  for (std::size_t b = 0; b < shardOf.size(); ++b) {
+    if (shardOf[b] == shard.index) continue;
+    for (const std::int64_t p : probesOfBrick(part.grid, std::int64_t(b)))
+      if (part.states[p] != ProbeState::Invalid)
+        throw InputError(fmt::format("{}: holds probe {} of brick {}, which belongs to shard {}/{}, not to its own "
+                                     "shard {}", name, p, b, shardOf[b], shard.count, shardName(shard)));
+  }
+  claim(shard, name);
+  addPacked(shard, packBricks(part, shardBricks(part.grid, shard)));
+}
+
+void VolumeAssembly::addPacked(const Shard& shard, const std::vector<float>& packed) {
+  if (shard.count != whole_.shard->count)
+    throw InputError(fmt::format("shard {}: the bake has {} shards", shardName(shard), whole_.shard->count));
+  if (given_[std::size_t(shard.index)].empty()) claim(shard, "shard " + shardName(shard));
+  const std::vector<std::int64_t> bricks = shardBricks(whole_.grid, shard);
+  const int nc = whole_.coefficientsPerProbe, nv = whole_.visibilityPerProbe;
+  if (packed.size() != packedSize(whole_.grid, bricks, nc, nv))
+    throw InputError(fmt::format("shard {}: {} values received, {} expected", shardName(shard), packed.size(),
+                                 packedSize(whole_.grid, bricks, nc, nv)));
+  const float* in = packed.data();
+  for (const std::int64_t b : bricks)
+    for (const std::int64_t p : probesOfBrick(whole_.grid, b)) {
+      const float state = *in++;
+      if (!(state == 0.0f || state == 1.0f || state == 2.0f))
+        throw InputError(fmt::format("shard {}: probe {} has state {}, not 0, 1 or 2", shardName(shard), p, state));
+      whole_.states[p] = ProbeState(std::uint8_t(state));
+      for (int c = 0; c < 3; ++c) whole_.offsets[p][c] = *in++;
+      std::copy_n(in, nc, whole_.coefficients.begin() + p * nc);
+      in += nc;
+      std::copy_n(in, nv, whole_.visibility.begin() + p * nv);
+      in += nv;
+    }
+}
+
+Volume VolumeAssembly::finish() {
+  std::vector<std::string> missing;
+  for (std::size_t s = 0; s < given_.size(); ++s)
+    if (given_[s].empty()) missing.push_back(fmt::format("{}/{}", s, given_.size()));
+  if (!missing.empty())
+    throw InputError(fmt::format("shard{} {} missing: every part of the bake must be given once",
+                                 missing.size() > 1 ? "s" : "", fmt::join(missing, ", ")));
+  fillInvalidProbes(whole_.grid, whole_.states, whole_.coefficientsPerProbe, whole_.coefficients);
+  fillInvalidProbes(whole_.grid, whole_.states, whole_.visibilityPerProbe, whole_.visibility);
+  whole_.shard.reset();
+  return std::move(whole_);
+}
+
+std::size_t packedSize(const ProbeGrid& grid, const std::vector<std::int64_t>& bricks, int coefficientsPerProbe,
+                       int visibilityPerProbe) {
+  std::size_t probes = 0;
+  for (const std::int64_t b : bricks) probes += probesOfBrick(grid, b).size();
+  return probes * std::size_t(4 + coefficientsPerProbe + visibilityPerProbe);
+}
+
+std::vector<float> packBricks(const Volume& part, const std::vector<std::int64_t>& bricks) {
+  const int nc = part.coefficientsPerProbe, nv = part.visibilityPerProbe;
+  std::vector<float> packed;
+  packed.reserve(packedSize(part.grid, bricks, nc, nv));
+  for (const std::int64_t b : bricks)
+    for (const std::int64_t p : probesOfBrick(part.grid, b)) {
+      packed.push_back(float(part.states[p]));
+      packed.insert(packed.end(), part.offsets[p].data(), part.offsets[p].data() + 3);
+      packed.insert(packed.end(), part.coefficients.begin() + p * nc, part.coefficients.begin() + (p + 1) * nc);
+      packed.insert(packed.end(), part.visibility.begin() + p * nv, part.visibility.begin() + (p + 1) * nv);
+    }
+  return packed;
+}
+
+}  // namespace baker

@@ -1,0 +1,44 @@
+#pragma once
+#include <string>
+#include <vector>
+
+#include "volume/Shard.h"
+#include "volume/Volume.h"
+
+namespace baker {
+
+// The whole volume of a bake cut into shards, put together from its parts in any order: every
+// probe of a shard's bricks comes from that shard's part, then the Invalid probes are filled
+// over the whole grid exactly as a one-process bake fills them, so the result is the same bits.
+// Each part is checked against the first before anything of it is used; a mismatch is an
+// InputError naming the part and the field (basis, grid, a setting, the shard).
+class VolumeAssembly {
+ public:
+  // `first` (named `firstName` in errors) decides the bake every other part must belong to.
+  VolumeAssembly(const Volume& first, const std::string& firstName);
+
+  // Adds a part: the same bake as the first, a shard not given before, nothing baked outside its
+  // own bricks.
+  void add(const Volume& part, const std::string& name);
+  // Adds the values of shard `shard`'s bricks as packBricks wrote them (a rank's part sent over
+  // MPI): no file, so nothing to check but the shard and the size.
+  void addPacked(const Shard& shard, const std::vector<float>& packed);
+  // Every shard given: the filled whole volume. InputError naming the shards missing otherwise.
+  Volume finish();
+
+ private:
+  void claim(const Shard& shard, const std::string& name);
+
+  Volume whole_;
+  std::string firstName_;
+  std::vector<std::string> given_;  // per shard: the part that holds it, "" until given
+};
+
+// A part's values for its shard's bricks, probe by probe in brick order: state, offset (3),
+// coefficients, sky visibility; what a rank sends to the rank that writes the volume.
+std::vector<float> packBricks(const Volume& part, const std::vector<std::int64_t>& bricks);
+// The size of packBricks's result for these bricks of `grid`.
+std::size_t packedSize(const ProbeGrid& grid, const std::vector<std::int64_t>& bricks, int coefficientsPerProbe,
+                       int visibilityPerProbe);
+
+}  // namespace baker
