@@ -52,7 +52,7 @@ nlohmann::json shardJson(const BakeJob& job) {
   const std::optional<Shard>& shard = job.request().shard;
   if (!shard) return nullptr;
   return {{"index", shard->index}, {"count", shard->count},
-          {"bricks", shardBricks(job.grid(), *shard).size()}, {"bricks_in_grid", bricksInMortonOrder(job.grid()).size()}};
+          {"bricks", shardBricks(job.grid(), *shard).size()}, {"bricks_in_grid", job.grid().brickCount()}};
 }
 
 nlohmann::json bakeJson(const BakeReport& r) {
@@ -124,7 +124,7 @@ void printBakeSummary(const BakeReport& r) {
   if (const std::optional<Shard>& shard = job.request().shard)
     std::cout << fmt::format("wrote {}: shard {} of the bake ({} of {} bricks, {}), to merge with the other parts "
                              "(baker merge OUT PART...)\n",
-                             r.output.path, shardName(*shard), stats.bricks, bricksInMortonOrder(grid).size(),
+                             r.output.path, shardName(*shard), stats.bricks, grid.brickCount(),
                              job.basis().name());
   else
     std::cout << fmt::format("wrote {} ({}, {} coefficients per probe)\n", r.output.path, job.basis().name(),

@@ -119,7 +119,7 @@ int runInspectCommand(int argc, char** argv) {
     if (v.shard)
       std::cout << fmt::format("part: shard {} of a bake ({} of {} bricks); probes outside it count as invalid here, "
                                "and invalid probes are filled when the parts are merged (baker merge)\n",
-                               shardName(*v.shard), shardBricks(g, *v.shard).size(), bricksInMortonOrder(g).size());
+                               shardName(*v.shard), shardBricks(g, *v.shard).size(), g.brickCount());
     std::cout << fmt::format("probes: {} valid, {} relocated, {} invalid{}\n", counts[1], counts[2], counts[0],
                              v.shard ? "" : " (filled from neighbours)");
     for (const nlohmann::json& grid : grids)

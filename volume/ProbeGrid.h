@@ -20,6 +20,7 @@ struct ProbeGrid {
   Eigen::Vector3d position(int i, int j, int k) const { return origin + spacing * Eigen::Vector3d(i, j, k); }
   // Bricks per axis, the last one on each axis possibly partial.
   Eigen::Vector3i brickCounts() const { return (dims.array() + kBrickSize - 1) / kBrickSize; }
+  std::int64_t brickCount() const { return brickCounts().cast<std::int64_t>().prod(); }
 };
 
 // The default spacing aims for this many probes along the longest side of a small scene...

@@ -10,6 +10,10 @@
 namespace baker {
 namespace {
 
+InputError notAPart(const std::string& name) {
+  return InputError(fmt::format("{}: not a shard's part (no baker.shard); a part is baked as one shard of a bake", name));
+}
+
 std::string vectorText(const Eigen::Vector3d& v) { return fmt::format("({:.17g}, {:.17g}, {:.17g})", v.x(), v.y(), v.z()); }
 
 // InputError naming `name` and the first field in which `part` is not the same bake as `first`.
@@ -18,7 +22,7 @@ void requireSameBake(const Volume& part, const std::string& name, const Volume& 
     throw InputError(fmt::format("{}: {} is {}, but {} has {}: the parts are not of one bake", name, field, here,
                                  firstName, there));
   };
-  if (!part.shard) throw InputError(fmt::format("{}: not a shard's part (no baker.shard); a part is baked as one shard of a bake", name));
+  if (!part.shard) throw notAPart(name);
   if (part.shard->count != first.shard->count)
     mismatch("baker.shard", shardName(*part.shard), fmt::format("a part of {} shards", first.shard->count));
   if (part.basisName != first.basisName) mismatch("baker.basis", part.basisName, first.basisName);
@@ -51,7 +55,7 @@ void requireSameBake(const Volume& part, const std::string& name, const Volume& 
 
 VolumeAssembly::VolumeAssembly(const Volume& first, const std::string& firstName) : firstName_(firstName) {
   if (!first.shard)
-    throw InputError(fmt::format("{}: not a shard's part (no baker.shard); a part is baked as one shard of a bake", firstName));
+    throw notAPart(firstName);
   whole_.grid = first.grid;
   whole_.basisName = first.basisName;
   whole_.coefficientsPerProbe = first.coefficientsPerProbe;
