@@ -63,8 +63,7 @@ ProbeGrid defaultGrid(const Eigen::AlignedBox3f& bounds, const Basis& basis, std
                                                       kDefaultProbesAlongLongestSide)
                                         : fmt::format("the default: {} m at most, in a scene {:.4g} m long",
                                                       kDefaultMaxSpacing, longest);
-  ProbeGrid unit;  // one probe: the memory a probe of this basis takes
-  const double bytesPerProbe = volumeMemoryBytes(unit, basis);
+  const double bytesPerProbe = volumeMemoryBytes(1.0, basis);
   const double memoryProbes = double(physicalMemoryBytes()) / bytesPerProbe;
   const double limit = std::min(double(kMaxBakeProbes), memoryProbes);
   const double firstSpacing = spacing;

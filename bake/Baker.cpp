@@ -36,7 +36,12 @@ void bakeBrick(const RayTracer& tracer, const ProbeGrid& grid, const BakeSetting
       for (int i = lo.x(); i < hi.x(); ++i)
         candidates.push_back({grid.position(i, j, k).cast<float>(), std::uint64_t(grid.linearIndex(i, j, k)),
                               rotationOf(i, j, k)});
-  for (const ProbeTask& candidate : candidates) volume.states[candidate.id] = ProbeState::Valid;
+  // Each candidate's row in the volume's arrays (the probe's index in a whole volume).
+  std::vector<std::int64_t> rows(candidates.size());
+  for (std::size_t c = 0; c < candidates.size(); ++c) {
+    rows[c] = volume.rowOf(std::int64_t(candidates[c].id));
+    volume.states[rows[c]] = ProbeState::Valid;
+  }
   if (settings.transport.probeValidity) {
     const ValidityOptions validityOptions;
     // Placed side by side like the probes' tracing (ProbeBaker::bake). Isolated so that a
@@ -44,27 +49,30 @@ void bakeBrick(const RayTracer& tracer, const ProbeGrid& grid, const BakeSetting
     std::vector<std::int64_t> validityRays(candidates.size(), 0);
     tbb::this_task_arena::isolate([&] {
       tbb::parallel_for(std::size_t(0), candidates.size(), [&](std::size_t c) {
-        const std::int64_t index = std::int64_t(candidates[c].id);
         const ProbePlacement placement = placeProbe(tracer, candidates[c].position, float(grid.spacing),
                                                     testDirections, validityOptions, &validityRays[c]);
-        volume.states[index] = placement.state;
-        volume.offsets[index] = placement.offset;
+        volume.states[rows[c]] = placement.state;
+        volume.offsets[rows[c]] = placement.offset;
         candidates[c].position += placement.offset;
       });
     });
     for (std::int64_t n : validityRays) counts.validity += n;
   }
   std::vector<ProbeTask> tasks;
-  for (const ProbeTask& candidate : candidates)
-    if (volume.states[candidate.id] != ProbeState::Invalid) tasks.push_back(candidate);
+  std::vector<std::int64_t> taskRows;
+  for (std::size_t c = 0; c < candidates.size(); ++c)
+    if (volume.states[rows[c]] != ProbeState::Invalid) {
+      tasks.push_back(candidates[c]);
+      taskRows.push_back(rows[c]);
+    }
   coefficients.resize(tasks.size() * volume.coefficientsPerProbe);
   visibility.resize(tasks.size() * volume.visibilityPerProbe);
   probeBaker.bake(tasks, coefficients.data(), visibility.data(), &counts, nullptr, &tally);
   for (std::size_t t = 0; t < tasks.size(); ++t) {
     std::copy_n(coefficients.data() + t * volume.coefficientsPerProbe, volume.coefficientsPerProbe,
-                volume.coefficients.data() + tasks[t].id * volume.coefficientsPerProbe);
+                volume.coefficients.data() + taskRows[t] * volume.coefficientsPerProbe);
     std::copy_n(visibility.data() + t * volume.visibilityPerProbe, volume.visibilityPerProbe,
-                volume.visibility.data() + tasks[t].id * volume.visibilityPerProbe);
+                volume.visibility.data() + taskRows[t] * volume.visibilityPerProbe);
   }
 }
 
@@ -90,14 +98,16 @@ std::vector<std::int64_t> bricksToBake(const ProbeGrid& grid, const std::optiona
   return all;
 }
 
-// Probes outside the bricks baked stay Invalid (a shard's part stores none of them).
-Volume emptyVolume(const ProbeGrid& grid, const Basis& basis, const ProbeBaker& probeBaker) {
+// Zeros, every probe Invalid until its brick is baked. A shard's part holds only the shard's
+// bricks, so that its memory follows the shard rather than the grid.
+Volume emptyVolume(const ProbeGrid& grid, const ProbeRows& rows, const Basis& basis, const ProbeBaker& probeBaker) {
   Volume volume;
   volume.grid = grid;
+  volume.rows = rows;
   volume.basisName = basis.name();
   volume.coefficientsPerProbe = probeBaker.coefficientsPerProbe();
   volume.visibilityPerProbe = probeBaker.visibilityPerProbe();
-  const std::size_t probes = std::size_t(grid.probeCount());
+  const std::size_t probes = std::size_t(volume.rows.count(grid));
   volume.coefficients.assign(probes * volume.coefficientsPerProbe, 0.0f);
   volume.visibility.assign(probes * volume.visibilityPerProbe, 0.0f);
   volume.states.assign(probes, ProbeState::Invalid);
@@ -112,15 +122,17 @@ Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basi
                   const std::function<void(std::int64_t, std::int64_t)>& progress,
                   const std::optional<Shard>& shard) {
   if (settings.rays <= 0) throw SettingError("rays", fmt::format("must be positive, got {}", settings.rays));
-  requireVolumeFitsInMemory(grid, basis, physicalMemoryBytes());
+  requireVolumeFitsInMemory(grid, shard ? shard->count : 1, basis, physicalMemoryBytes());
+  const std::vector<std::int64_t> toBake = bricksToBake(grid, shard);
+  const ProbeRows rows = shard ? ProbeRows(grid, toBake) : ProbeRows();
+  const std::int64_t probesHeld = rows.count(grid);
   const auto start = std::chrono::steady_clock::now();
   const ProbeBaker probeBaker(scene, tracer, basis, settings, kRotations);
   const auto operatorsBuilt = std::chrono::steady_clock::now();
-  Volume volume = emptyVolume(grid, basis, probeBaker);
+  Volume volume = emptyVolume(grid, rows, basis, probeBaker);
   const std::vector<Eigen::Vector3f> testDirections = validityDirections(ValidityOptions{});
 
   const Eigen::Vector3i bricks = grid.brickCounts();
-  const std::vector<std::int64_t> toBake = bricksToBake(grid, shard);
   const int brickCount = int(toBake.size());
   std::vector<RayCounts> brickRays(brickCount);
   std::vector<RoundTally> brickTallies(brickCount);
@@ -144,8 +156,7 @@ Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basi
   requireFinite(volume);
 
   if (stats) {
-    stats->probes = 0;
-    for (const std::int64_t b : toBake) stats->probes += std::int64_t(probesOfBrick(grid, b).size());
+    stats->probes = probesHeld;
     stats->bricks = brickCount;
     stats->raysPerProbe = settings.rays;
     stats->rays = RayCounts{};

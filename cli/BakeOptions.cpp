@@ -58,9 +58,11 @@ std::unique_ptr<BakeJob> prepareBake(const CLI::App& app, const BakeOptions& opt
   auto job = std::make_unique<BakeJob>(bakeRequest(app, options));
   for (const std::string& w : job->scene().warnings) log << "baker: warning: " << w << "\n";
   const ProbeGrid& g = job->grid();
-  log << fmt::format("grid: {} × {} × {} = {} probes, spacing {:.4g} m ({}), {:.3g} GiB at the peak\n", g.dims.x(),
+  const int shards = job->request().shard ? job->request().shard->count : 1;
+  log << fmt::format("grid: {} × {} × {} = {} probes, spacing {:.4g} m ({}), {:.3g} GiB at the peak{}\n", g.dims.x(),
                      g.dims.y(), g.dims.z(), g.probeCount(), g.spacing, job->spacingReason(),
-                     volumeMemoryBytes(g, job->basis()) / double(1ull << 30));
+                     bakeMemoryBytes(g, shards, job->basis()) / double(1ull << 30),
+                     shards > 1 ? " per shard (the merge holds the whole volume)" : "");
   printPlan(log, job->plan());
   return job;
 }

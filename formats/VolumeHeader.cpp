@@ -50,7 +50,7 @@ Volume VolumeHeader::emptyVolume(const std::string& path) const {
     throw InputError(fmt::format("{}: baker.dims ({}, {}, {}) is not a valid grid size", path, d.x(), d.y(), d.z()));
   // Half of the bake's estimate: reading holds the volume once. Checked before allocating, so
   // that a damaged size is refused rather than exhausting memory.
-  const double needed = volumeMemoryBytes(grid, *basis) / 2;
+  const double needed = volumeMemoryBytes(double(d.x()) * d.y() * d.z(), *basis) / 2;
   if (needed > double(physicalMemoryBytes()))
     throw InputError(fmt::format("{}: baker.dims ({}, {}, {}) in {} would need {:.3g} GiB, more than this machine's "
                                  "memory", path, d.x(), d.y(), d.z(), basisName, needed / double(1ull << 30)));

@@ -39,11 +39,13 @@ std::string componentName(const VolumeGrid& grid, int component) {
 }
 
 float gridValue(const Volume& v, const VolumeGrid& grid, int component, std::int64_t probe) {
+  const std::int64_t row = v.rowOf(probe);
+  if (row < 0) return grid.kind == VolumeGrid::Kind::ProbeState ? float(ProbeState::Invalid) : 0.0f;
   switch (grid.kind) {
-    case VolumeGrid::Kind::Coefficients: return v.coefficients[probe * v.coefficientsPerProbe + grid.index[component]];
-    case VolumeGrid::Kind::Visibility: return v.visibility[probe * v.visibilityPerProbe + grid.index[component]];
-    case VolumeGrid::Kind::ProbeState: return float(v.states[probe]);
-    case VolumeGrid::Kind::ProbeOffset: return v.offsets[probe][component];
+    case VolumeGrid::Kind::Coefficients: return v.coefficients[row * v.coefficientsPerProbe + grid.index[component]];
+    case VolumeGrid::Kind::Visibility: return v.visibility[row * v.visibilityPerProbe + grid.index[component]];
+    case VolumeGrid::Kind::ProbeState: return float(v.states[row]);
+    case VolumeGrid::Kind::ProbeOffset: return v.offsets[row][component];
   }
   return 0.0f;
 }
@@ -60,6 +62,7 @@ void setGridValue(Volume& v, const VolumeGrid& grid, int component, std::int64_t
 }
 
 void prepareForReading(Volume& v, bool hasProbeStates) {
+  v.rows = ProbeRows();
   const std::size_t n = std::size_t(v.grid.probeCount());
   v.coefficients.assign(n * v.coefficientsPerProbe, 0.0f);
   v.visibility.assign(n * v.visibilityPerProbe, 0.0f);
@@ -80,7 +83,8 @@ std::vector<bool> storedBricks(const Volume& v) {
   for (int k = 0; k < v.grid.dims.z(); ++k)
     for (int j = 0; j < v.grid.dims.y(); ++j)
       for (int i = 0; i < v.grid.dims.x(); ++i)
-        if (v.states[v.grid.linearIndex(i, j, k)] != ProbeState::Invalid) stored[brickOf(v.grid, i, j, k)] = true;
+        if (const std::int64_t row = v.rows.row(v.grid, i, j, k); row >= 0 && v.states[row] != ProbeState::Invalid)
+          stored[brickOf(v.grid, i, j, k)] = true;
   return stored;
 }
 

@@ -31,11 +31,12 @@ std::vector<VolumeGrid> volumeGrids(const Basis& basis, int visibilityPerProbe, 
 // "rgb_00.R", "probe_offset.X", or the grid's own name for a scalar grid.
 std::string componentName(const VolumeGrid& grid, int component);
 
+// Zero (an Invalid state) for a probe the volume does not hold.
 float gridValue(const Volume& volume, const VolumeGrid& grid, int component, std::int64_t probe);
 // Sizes `volume`'s arrays are expected to have already (see prepareForReading).
 void setGridValue(Volume& volume, const VolumeGrid& grid, int component, std::int64_t probe, float value);
 
-// Sizes a volume's arrays for its grid and per-probe counts before a reader fills them: zeros,
+// Sizes a volume's arrays for every probe of its grid and per-probe counts before a reader fills them: zeros,
 // probes Invalid (what a sparse file's missing bricks mean) when the file has probe states.
 void prepareForReading(Volume& volume, bool hasProbeStates);
 

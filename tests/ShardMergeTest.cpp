@@ -10,9 +10,12 @@
 #include <string>
 #include <vector>
 
+#include "bake/Baker.h"
+#include "basis/BasisRegistry.h"
 #include "formats/VolumeReader.h"
 #include "tests/BakerProcess.h"
 #include "tests/TestData.h"
+#include "volume/ProbeRows.h"
 #include "volume/Shard.h"
 
 // A bake cut into shards, merged, must be the one-process bake byte for byte; the merge refuses
@@ -130,6 +133,45 @@ TEST(Shards, PartsOfEveryBrickAreDisjointAndComplete) {
   EXPECT_EQ(parseShard("3/8")->index, 3);
   for (const char* bad : {"8/8", "-1/2", "1/0", "1/4097", "1/2/3", "a/b", "1/", "/2", " 1/2", "1/2 "})
     EXPECT_FALSE(parseShard(bad)) << bad;
+}
+
+// A part's rows are its bricks' probes, each in exactly one row, brick after brick.
+TEST(Shards, APartHoldsARowForEachProbeOfItsBricksAndNoOther) {
+  ProbeGrid grid;
+  grid.dims = {37, 9, 50};
+  const std::vector<std::int64_t> bricks = shardBricks(grid, {4, 9});
+  const ProbeRows rows(grid, bricks);
+  std::vector<int> hits(std::size_t(rows.count(grid)), 0);
+  std::vector<bool> held(std::size_t(grid.probeCount()), false);
+  std::int64_t next = 0;
+  for (const std::int64_t b : bricks)
+    for (const std::int64_t p : probesOfBrick(grid, b)) {
+      EXPECT_EQ(rows.row(grid, p), next++) << "probe " << p << " of brick " << b;
+      held[std::size_t(p)] = true;
+    }
+  EXPECT_EQ(next, rows.count(grid));
+  for (std::int64_t p = 0; p < grid.probeCount(); ++p)
+    if (!held[std::size_t(p)]) ASSERT_EQ(rows.row(grid, p), -1) << "probe " << p;
+  EXPECT_EQ(ProbeRows().row(grid, 123), 123) << "a whole volume: probe p in row p";
+}
+
+// A shard's bake allocates its own bricks' probes, not the grid's: what bounds each machine's
+// memory by its share of the work.
+TEST(Shards, AShardsBakeHoldsOnlyItsBricks) {
+  const Scene scene;
+  const RayTracer tracer(scene);
+  const auto basis = makeBasis("ad-ycocg");
+  ProbeGrid grid;
+  grid.dims = {24, 16, 8};  // 3 × 2 × 1 bricks
+  BakeSettings settings;
+  settings.rays = 4;
+  BakeStats stats;
+  const Volume part = bakeVolume(scene, tracer, *basis, grid, settings, &stats, {}, Shard{1, 3});
+  EXPECT_EQ(stats.probes, 2 * 512);
+  EXPECT_EQ(part.states.size(), std::size_t(2 * 512));
+  EXPECT_EQ(part.coefficients.size(), std::size_t(2 * 512 * part.coefficientsPerProbe));
+  for (const std::int64_t b : shardBricks(grid, {1, 3}))
+    for (const std::int64_t p : probesOfBrick(grid, b)) ASSERT_EQ(part.states[part.rowOf(p)], ProbeState::Valid);
 }
 
 class MergeRefuses : public ::testing::Test {

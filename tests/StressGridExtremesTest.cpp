@@ -81,7 +81,7 @@ TEST_F(StressGridExtremes, AGridTooLargeForMemoryIsRefusedBeforeTracingWithTheEs
   const auto basis = makeBasis("sh-l8");
   ProbeGrid grid;
   grid.dims = {1 << 20, 1 << 20, 1 << 10};
-  const double estimate = volumeMemoryBytes(grid, *basis);
+  const double estimate = bakeMemoryBytes(grid, 1, *basis);
   EXPECT_GT(estimate, 1e18);
   const auto start = std::chrono::steady_clock::now();
   try {
@@ -97,8 +97,11 @@ TEST_F(StressGridExtremes, AGridTooLargeForMemoryIsRefusedBeforeTracingWithTheEs
 
   // What fits is let through, whatever the machine: the check compares with what it is given.
   grid.dims = {10, 10, 10};
-  EXPECT_NO_THROW(requireVolumeFitsInMemory(grid, *basis, std::uint64_t(volumeMemoryBytes(grid, *basis))));
-  EXPECT_THROW(requireVolumeFitsInMemory(grid, *basis, std::uint64_t(volumeMemoryBytes(grid, *basis)) - 1), InputError);
+  const double needed = bakeMemoryBytes(grid, 1, *basis);
+  EXPECT_NO_THROW(requireVolumeFitsInMemory(grid, 1, *basis, std::uint64_t(needed)));
+  EXPECT_THROW(requireVolumeFitsInMemory(grid, 1, *basis, std::uint64_t(needed) - 1), InputError);
+  // A shard holds its share of the probes (and the brick tables), not the grid.
+  EXPECT_LT(bakeMemoryBytes(grid, 8, *basis), needed / 7);
 }
 
 }  // namespace

@@ -10,10 +10,9 @@
 
 namespace baker {
 
-double volumeMemoryBytes(const ProbeGrid& grid, const Basis& basis) {
+double volumeMemoryBytes(double probes, const Basis& basis) {
   const double values = double(basis.totalCoefficients()) + double(basis.functions(0).count());
   const double perProbe = values * sizeof(float) + sizeof(ProbeState) + sizeof(Eigen::Vector3f);
-  const double probes = double(grid.dims.x()) * double(grid.dims.y()) * double(grid.dims.z());
   return 2.0 * probes * perProbe;
 }
 
@@ -24,14 +23,23 @@ std::uint64_t physicalMemoryBytes() {
   return std::uint64_t(pages) * std::uint64_t(pageSize);
 }
 
-void requireVolumeFitsInMemory(const ProbeGrid& grid, const Basis& basis, std::uint64_t availableBytes) {
-  const double needed = volumeMemoryBytes(grid, basis);
+double bakeMemoryBytes(const ProbeGrid& grid, int shardCount, const Basis& basis) {
+  const double probes = double(grid.dims.x()) * double(grid.dims.y()) * double(grid.dims.z());
+  if (shardCount <= 1) return volumeMemoryBytes(probes, basis);
+  // The Morton order of every brick (index and key) and the brick-to-row table.
+  const double brickTables = 3.0 * sizeof(std::int64_t) * double(grid.brickCount());
+  return volumeMemoryBytes(probes / shardCount, basis) + brickTables;
+}
+
+void requireVolumeFitsInMemory(const ProbeGrid& grid, int shardCount, const Basis& basis, std::uint64_t availableBytes) {
+  const double needed = bakeMemoryBytes(grid, shardCount, basis);
   if (needed <= double(availableBytes)) return;
+  const std::string held = shardCount <= 1 ? "" : fmt::format(" (one shard of {})", shardCount);
   throw SettingError("spacing",
-                    fmt::format(": a grid of {} × {} × {} probes in {} needs about {:.0f} bytes ({:.3g} GiB: the volume, "
-                               "and as much again while it is written), more than this machine's {} bytes of "
-                               "memory; nothing was traced (raise the spacing)",
-                               grid.dims.x(), grid.dims.y(), grid.dims.z(), basis.name(), needed,
+                    fmt::format(": a grid of {} × {} × {} probes{} in {} needs about {:.0f} bytes ({:.3g} GiB: the "
+                               "values, and as much again while they are written), more than this machine's {} bytes "
+                               "of memory; nothing was traced (raise the spacing, or cut the bake into more shards)",
+                               grid.dims.x(), grid.dims.y(), grid.dims.z(), held, basis.name(), needed,
                                needed / double(1ull << 30), availableBytes));
 }
 

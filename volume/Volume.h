@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "volume/ProbeGrid.h"
+#include "volume/ProbeRows.h"
 #include "volume/ProbeState.h"
 #include "volume/Shard.h"
 
@@ -13,9 +14,11 @@ namespace baker {
 
 // A baked irradiance volume: per probe, the basis coefficients of the irradiance E(n) it receives,
 // laid out as Basis describes (channel after channel), and of its sky visibility. Probe
-// p = i + nx·(j + ny·k).
+// p = i + nx·(j + ny·k) has row rowOf(p) of every per-probe array: row p, unless the volume is a
+// shard's part as baked, which holds only its own bricks (ProbeRows).
 struct Volume {
   ProbeGrid grid;
+  ProbeRows rows;
   std::string basisName;
   int coefficientsPerProbe = 0;
   std::vector<float> coefficients;
@@ -32,7 +35,9 @@ struct Volume {
   // probe is Invalid and zero), and its Invalid probes are not filled until the parts are merged.
   std::optional<Shard> shard;
 
-  const float* probe(std::int64_t index) const { return coefficients.data() + index * coefficientsPerProbe; }
+  std::int64_t rowOf(std::int64_t probe) const { return rows.row(grid, probe); }
+  // The coefficients of a probe the volume holds.
+  const float* probe(std::int64_t index) const { return coefficients.data() + rowOf(index) * coefficientsPerProbe; }
 };
 
 }  // namespace baker

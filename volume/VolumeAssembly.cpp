@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "common/Error.h"
 #include "volume/InvalidProbeFill.h"
@@ -88,7 +89,7 @@ void VolumeAssembly::add(const Volume& part, const std::string& name) {
   for (std::size_t b = 0; b < shardOf.size(); ++b) {
     if (shardOf[b] == shard.index) continue;
     for (const std::int64_t p : probesOfBrick(part.grid, std::int64_t(b)))
-      if (part.states[p] != ProbeState::Invalid)
+      if (const std::int64_t row = part.rowOf(p); row >= 0 && part.states[row] != ProbeState::Invalid)
         throw InputError(fmt::format("{}: holds probe {} of brick {}, which belongs to shard {}/{}, not to its own "
                                      "shard {}", name, p, b, shardOf[b], shard.count, shardName(shard)));
   }
@@ -146,10 +147,12 @@ std::vector<float> packBricks(const Volume& part, const std::vector<std::int64_t
   packed.reserve(packedSize(part.grid, bricks, nc, nv));
   for (const std::int64_t b : bricks)
     for (const std::int64_t p : probesOfBrick(part.grid, b)) {
-      packed.push_back(float(part.states[p]));
-      packed.insert(packed.end(), part.offsets[p].data(), part.offsets[p].data() + 3);
-      packed.insert(packed.end(), part.coefficients.begin() + p * nc, part.coefficients.begin() + (p + 1) * nc);
-      packed.insert(packed.end(), part.visibility.begin() + p * nv, part.visibility.begin() + (p + 1) * nv);
+      const std::int64_t r = part.rowOf(p);
+      if (r < 0) throw std::logic_error("packBricks: a brick the part does not hold");
+      packed.push_back(float(part.states[r]));
+      packed.insert(packed.end(), part.offsets[r].data(), part.offsets[r].data() + 3);
+      packed.insert(packed.end(), part.coefficients.begin() + r * nc, part.coefficients.begin() + (r + 1) * nc);
+      packed.insert(packed.end(), part.visibility.begin() + r * nv, part.visibility.begin() + (r + 1) * nv);
     }
   return packed;
 }
