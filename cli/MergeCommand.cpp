@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/CommandLine.h"
+#include "common/PeakMemory.h"
 #include "formats/PartMerge.h"
 
 namespace baker {
@@ -32,7 +33,8 @@ int runMergeCommand(int argc, char** argv) {
                                   {"parts", r.shards},
                                   {"probes", r.probes},
                                   {"invalid_probes_filled", r.invalidProbes},
-                                  {"seconds", {{"read_and_fill", r.readSeconds}, {"write", r.writeSeconds}}}}
+                                  {"seconds", {{"read_and_fill", r.readSeconds}, {"write", r.writeSeconds}}},
+                                  {"peak_memory_bytes", peakMemoryBytes()}}
                        .dump(2)
                 << "\n";
       return 0;

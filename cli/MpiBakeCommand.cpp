@@ -9,6 +9,7 @@
 
 #include "cli/CommandLine.h"
 #include "cli/ProgressBar.h"
+#include "common/PeakMemory.h"
 #include "common/Timing.h"
 #include "scaleout/MpiBake.h"
 
@@ -35,7 +36,9 @@ nlohmann::json mpiJson(const BakeJob& job, const MpiBakeReport& r, const VolumeO
           {"rays_traced", r.raysTraced},
           {"seconds", {{"bake_rank_0", r.bakeSeconds}, {"gather", r.gatherSeconds}, {"write", r.writeSeconds},
                        {"total", totalSeconds}}},
-          {"per_rank", perRank}};
+          {"per_rank", perRank},
+          // Rank 0's, after gathering and writing the whole volume (per_rank has each rank's bake).
+          {"peak_memory_bytes", peakMemoryBytes()}};
 }
 
 void printMpiSummary(const MpiBakeReport& r, const VolumeOutput& output, const BakeJob& job, int ranks) {

@@ -102,6 +102,11 @@ std::string volumeConversion(const VolumeOutput& output, const Basis& basis) {
 }
 
 EngineExport writeVolume(const Volume& volume, const Basis& basis, const VolumeOutput& output) {
+  // An engine's files hold a whole volume; a part keeps only its bricks, which vdb and exr store.
+  if (volume.shard && (output.format == VolumeFormat::Bevy || output.format == VolumeFormat::ThreeJs))
+    throw SettingError("format", fmt::format("{}: a shard's part is written as vdb or exr; the merged volume can be "
+                                             "written in an engine's format",
+                                             volumeFormatName(output.format)));
   switch (output.format) {
     case VolumeFormat::Vdb: writeVdb(volume, basis, output.path); return {};
     case VolumeFormat::Exr: writeExrSlices(volume, basis, output.path, output.precision); return {};
