@@ -77,24 +77,16 @@ void bakeBrick(const RayTracer& tracer, const ProbeGrid& grid, const BakeSetting
 }
 
 // No NaN or Inf reaches a file.
-// The probe whose values are in row `row` (a shard's rows are not probe indices): for messages.
-std::int64_t probeAtRow(const Volume& volume, std::int64_t row) {
-  if (volume.rows.holdsEveryProbe()) return row;
-  for (std::int64_t p = 0; p < volume.grid.probeCount(); ++p)
-    if (volume.rowOf(p) == row) return p;
-  return row;
-}
-
 void requireFinite(const Volume& volume) {
   for (std::size_t i = 0; i < volume.coefficients.size(); ++i)
     if (!std::isfinite(volume.coefficients[i]))
       throw NumericalError(fmt::format("probe {} of the bake has a non-finite coefficient (the scene's radiance "
                                        "overflows float); nothing was written",
-                                       probeAtRow(volume, std::int64_t(i) / volume.coefficientsPerProbe)));
+                                       volume.rows.probeAt(volume.grid, std::int64_t(i) / volume.coefficientsPerProbe)));
   for (std::size_t i = 0; i < volume.visibility.size(); ++i)
     if (!std::isfinite(volume.visibility[i]))
       throw NumericalError(fmt::format("probe {} of the bake has a non-finite sky visibility; nothing was written",
-                                       probeAtRow(volume, std::int64_t(i) / volume.visibilityPerProbe)));
+                                       volume.rows.probeAt(volume.grid, std::int64_t(i) / volume.visibilityPerProbe)));
 }
 
 // Every brick in linear order, or the shard's.

@@ -220,14 +220,18 @@ void readSlice(const std::filesystem::path& dir, const Manifest& manifest, int k
         } else if (scaled(*grid)) {
           value = float(double(value) * scale);
         }
-        setGridValue(volume, *grid, c, p, value);
+        // A part read as its own bricks only skips the others, which must be Invalid and zero as
+        // the part's writer left them (the same check as VolumeAssembly::add's).
+        if (!setGridValue(volume, *grid, c, p, value) && grid->kind == VolumeGrid::Kind::ProbeState && value != 0.0f)
+          throw InputError(fmt::format("{}: probe at ({}, {}) has state {}, outside the bricks of its shard {}",
+                                       slicePath, i, j, value, shardName(*volume.shard)));
       }
     }
 }
 
 }  // namespace
 
-Volume readExrSlices(const std::string& path) {
+Volume readExrSlices(const std::string& path, PartReading parts) {
   std::filesystem::path dir = path;
   if (dir.filename() == kManifest) dir = dir.parent_path();
   const std::string manifestPath = (dir / kManifest).string();
@@ -239,7 +243,7 @@ Volume readExrSlices(const std::string& path) {
   // Every slice is checked against the manifest before anything is allocated for it: the
   // manifest's sizes are only believed once the images agree with them.
   for (int k = 0; k < g.dims.z(); ++k) openSlice(dir, manifest.slices[k], k, g, manifestPath);
-  Volume volume = manifest.header.emptyVolume(manifestPath);
+  Volume volume = manifest.header.emptyVolume(manifestPath, parts);
 
   const std::unique_ptr<Basis> basis = makeBasis(volume.basisName);
   const std::vector<VolumeGrid> grids = volumeGrids(*basis, volume.visibilityPerProbe, manifest.header.hasProbeStates);

@@ -2,6 +2,7 @@
 #include <string>
 
 #include "basis/Basis.h"
+#include "formats/VolumeHeader.h"
 #include "volume/Volume.h"
 
 namespace baker {
@@ -22,7 +23,7 @@ void writeExrSlices(const Volume& volume, const Basis& basis, const std::string&
 
 // Reads a directory written by writeExrSlices (or its manifest.json). InputError naming the
 // file and what is missing or inconsistent.
-Volume readExrSlices(const std::string& path);
+Volume readExrSlices(const std::string& path, PartReading parts = PartReading::EveryProbe);
 
 // Whether `path` is a directory with a manifest.json of EXR slices.
 bool isExrSliceDirectory(const std::string& path);

@@ -18,7 +18,7 @@ MergeReport mergeParts(const std::vector<std::string>& parts, const VolumeOutput
   const auto start = std::chrono::steady_clock::now();
   std::optional<VolumeAssembly> assembly;
   for (const std::string& path : parts) {
-    const Volume part = readVolume(path);
+    const Volume part = readVolume(path, PartReading::OwnBricks);
     if (!assembly) assembly.emplace(part, path);
     assembly->add(part, path);
   }

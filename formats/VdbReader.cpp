@@ -20,6 +20,12 @@ T required(const openvdb::MetaMap& meta, const std::string& key, const std::stri
   return value->value();
 }
 
+// A voxel of a part read as its own bricks only that lies in another shard's brick.
+InputError voxelOutsideShard(const std::string& path, const std::string& name, const Volume& v, std::int64_t p) {
+  return InputError(fmt::format("{}: grid '{}' holds probe {}, outside the bricks of its shard {}", path, name, p,
+                                shardName(*v.shard)));
+}
+
 // Copies the active voxels of one grid into the volume, refusing voxels outside the grid.
 template <typename GridType, typename Store>
 void readVoxels(openvdb::io::File& file, const std::string& name, const ProbeGrid& g, const std::string& path,
@@ -38,7 +44,7 @@ void readVoxels(openvdb::io::File& file, const std::string& name, const ProbeGri
 
 }  // namespace
 
-Volume readVdb(const std::string& path) {
+Volume readVdb(const std::string& path, PartReading parts) {
   requireVdbChecksum(path);
   openvdb::initialize();
   try {
@@ -58,7 +64,7 @@ Volume readVdb(const std::string& path) {
     header.hasProbeStates = file.hasGrid("probe_state");
     for (auto it = meta->beginMeta(); it != meta->endMeta(); ++it) header.text.push_back({it->first, it->second->str()});
 
-    Volume volume = header.emptyVolume(path);
+    Volume volume = header.emptyVolume(path, parts);
     const std::unique_ptr<Basis> basis = makeBasis(volume.basisName);
     const ProbeGrid& g = volume.grid;
     for (const VolumeGrid& spec : volumeGrids(*basis, volume.visibilityPerProbe, header.hasProbeStates)) {
@@ -66,15 +72,19 @@ Volume readVdb(const std::string& path) {
         readVoxels<openvdb::Int32Grid>(file, spec.name, g, path, [&](std::int64_t p, int state) {
           if (state < 0 || state > 2)
             throw InputError(fmt::format("{}: grid 'probe_state' holds {}; states are 0, 1 or 2", path, state));
-          volume.states[p] = ProbeState(state);
+          const std::int64_t row = volume.rowOf(p);
+          if (row < 0) throw voxelOutsideShard(path, spec.name, volume, p);
+          volume.states[row] = ProbeState(state);
         });
       else if (spec.components == 3)
         readVoxels<openvdb::Vec3SGrid>(file, spec.name, g, path, [&](std::int64_t p, const openvdb::Vec3s& v) {
-          for (int c = 0; c < 3; ++c) setGridValue(volume, spec, c, p, v[c]);
+          for (int c = 0; c < 3; ++c)
+            if (!setGridValue(volume, spec, c, p, v[c])) throw voxelOutsideShard(path, spec.name, volume, p);
         });
       else
-        readVoxels<openvdb::FloatGrid>(file, spec.name, g, path,
-                                       [&](std::int64_t p, float v) { setGridValue(volume, spec, 0, p, v); });
+        readVoxels<openvdb::FloatGrid>(file, spec.name, g, path, [&](std::int64_t p, float v) {
+          if (!setGridValue(volume, spec, 0, p, v)) throw voxelOutsideShard(path, spec.name, volume, p);
+        });
     }
     file.close();
     requireFiniteValues(volume, path);

@@ -36,7 +36,7 @@ void requireKnownFormatVersion(const std::vector<std::pair<std::string, std::str
 
 }  // namespace
 
-Volume VolumeHeader::emptyVolume(const std::string& path) const {
+Volume VolumeHeader::emptyVolume(const std::string& path, PartReading parts) const {
   requireKnownFormatVersion(text, path);
   const std::unique_ptr<Basis> basis = basisInFile(basisName, std::nullopt, path);
   if (coefficientsPerProbe != basis->totalCoefficients())
@@ -64,6 +64,7 @@ Volume VolumeHeader::emptyVolume(const std::string& path) const {
   volume.visibilityPerProbe = visibilityPerProbe;
   readSettings(text, volume);
   readShard(text, volume, path);
+  if (volume.shard && parts == PartReading::OwnBricks) volume.rows = ProbeRows(grid, shardBricks(grid, *volume.shard));
   prepareForReading(volume, hasProbeStates);
   return volume;
 }
@@ -71,10 +72,12 @@ Volume VolumeHeader::emptyVolume(const std::string& path) const {
 void requireFiniteValues(const Volume& v, const std::string& path) {
   for (std::size_t i = 0; i < v.coefficients.size(); ++i)
     if (!std::isfinite(v.coefficients[i]))
-      throw InputError(fmt::format("{}: probe {} has a non-finite coefficient", path, i / v.coefficientsPerProbe));
+      throw InputError(fmt::format("{}: probe {} has a non-finite coefficient", path,
+                                   v.rows.probeAt(v.grid, std::int64_t(i / v.coefficientsPerProbe))));
   for (std::size_t i = 0; i < v.visibility.size(); ++i)
     if (!std::isfinite(v.visibility[i]))
-      throw InputError(fmt::format("{}: probe {} has a non-finite visibility value", path, i / v.visibilityPerProbe));
+      throw InputError(fmt::format("{}: probe {} has a non-finite visibility value", path,
+                                   v.rows.probeAt(v.grid, std::int64_t(i / v.visibilityPerProbe))));
   for (const Eigen::Vector3f& o : v.offsets)
     if (!o.allFinite()) throw InputError(fmt::format("{}: a probe offset is not finite", path));
 }

@@ -15,6 +15,12 @@ namespace baker {
 // corrupted size is refused before it allocates.
 constexpr double kMaxProbesRead = double(1 << 28);
 
+// How much of a shard's part a reader holds: every probe of the grid (zeros outside the part's
+// bricks, as other commands expect), or only the part's own bricks (ProbeRows), as the merge
+// reads parts so that it holds the whole volume and one shard's share, not two whole volumes.
+// A voxel outside the part's bricks is refused when reading its own bricks only.
+enum class PartReading { EveryProbe, OwnBricks };
+
 // What a reader learns from a file before its values: checked once, the same for every format.
 struct VolumeHeader {
   std::string basisName;
@@ -26,7 +32,7 @@ struct VolumeHeader {
 
   // Checks the header against the basis it names and the limits (InputError naming `path` and
   // the key), then returns a volume with zeroed arrays of the right sizes and the settings.
-  Volume emptyVolume(const std::string& path) const;
+  Volume emptyVolume(const std::string& path, PartReading parts = PartReading::EveryProbe) const;
 };
 
 // InputError naming `path` and the probe when a value read from a file is NaN or infinite.

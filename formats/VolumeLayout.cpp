@@ -50,20 +50,20 @@ float gridValue(const Volume& v, const VolumeGrid& grid, int component, std::int
   return 0.0f;
 }
 
-void setGridValue(Volume& v, const VolumeGrid& grid, int component, std::int64_t probe, float value) {
+bool setGridValue(Volume& v, const VolumeGrid& grid, int component, std::int64_t probe, float value) {
+  const std::int64_t row = v.rowOf(probe);
+  if (row < 0) return false;
   switch (grid.kind) {
-    case VolumeGrid::Kind::Coefficients:
-      v.coefficients[probe * v.coefficientsPerProbe + grid.index[component]] = value;
-      return;
-    case VolumeGrid::Kind::Visibility: v.visibility[probe * v.visibilityPerProbe + grid.index[component]] = value; return;
-    case VolumeGrid::Kind::ProbeState: v.states[probe] = ProbeState(std::uint8_t(value)); return;
-    case VolumeGrid::Kind::ProbeOffset: v.offsets[probe][component] = value; return;
+    case VolumeGrid::Kind::Coefficients: v.coefficients[row * v.coefficientsPerProbe + grid.index[component]] = value; break;
+    case VolumeGrid::Kind::Visibility: v.visibility[row * v.visibilityPerProbe + grid.index[component]] = value; break;
+    case VolumeGrid::Kind::ProbeState: v.states[row] = ProbeState(std::uint8_t(value)); break;
+    case VolumeGrid::Kind::ProbeOffset: v.offsets[row][component] = value; break;
   }
+  return true;
 }
 
 void prepareForReading(Volume& v, bool hasProbeStates) {
-  v.rows = ProbeRows();
-  const std::size_t n = std::size_t(v.grid.probeCount());
+  const std::size_t n = std::size_t(v.rows.count(v.grid));
   v.coefficients.assign(n * v.coefficientsPerProbe, 0.0f);
   v.visibility.assign(n * v.visibilityPerProbe, 0.0f);
   v.states.assign(hasProbeStates ? n : 0, ProbeState::Invalid);

@@ -33,11 +33,12 @@ std::string componentName(const VolumeGrid& grid, int component);
 
 // Zero (an Invalid state) for a probe the volume does not hold.
 float gridValue(const Volume& volume, const VolumeGrid& grid, int component, std::int64_t probe);
-// Sizes `volume`'s arrays are expected to have already (see prepareForReading).
-void setGridValue(Volume& volume, const VolumeGrid& grid, int component, std::int64_t probe, float value);
+// Sizes `volume`'s arrays are expected to have already (see prepareForReading). False, storing
+// nothing, for a probe the volume does not hold (a part read as its own bricks only).
+[[nodiscard]] bool setGridValue(Volume& volume, const VolumeGrid& grid, int component, std::int64_t probe, float value);
 
-// Sizes a volume's arrays for every probe of its grid and per-probe counts before a reader fills them: zeros,
-// probes Invalid (what a sparse file's missing bricks mean) when the file has probe states.
+// Sizes a volume's arrays for the probes it holds (Volume::rows) before a reader fills them:
+// zeros, probes Invalid (what a sparse file's missing bricks mean) when the file has probe states.
 void prepareForReading(Volume& volume, bool hasProbeStates);
 
 // Bricks of 8³ probes (OpenVDB leaves) that hold at least one probe that is not Invalid: sparse

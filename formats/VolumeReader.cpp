@@ -32,12 +32,12 @@ std::string volumeFormatOf(const std::string& path) {
   return "vdb";
 }
 
-Volume readVolume(const std::string& path) {
+Volume readVolume(const std::string& path, PartReading parts) {
   const std::string format = volumeFormatOf(path);
-  if (format == "exr") return readExrSlices(path);
+  if (format == "exr") return readExrSlices(path, parts);
   if (format == "bevy") return readBevyIrradianceVolume(path);
   if (format == "threejs") return readThreeJsProbeGrid(path);
-  return readVdb(path);
+  return readVdb(path, parts);
 }
 
 std::unique_ptr<Basis> basisOf(const Volume& volume) {

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "basis/Basis.h"
+#include "formats/VolumeHeader.h"
 #include "volume/Volume.h"
 
 namespace baker {
@@ -11,7 +12,8 @@ namespace baker {
 // EXR slices (or its manifest.json), or an engine's export (Bevy's irradiance volume, three.js's
 // light probe grid: what the engine will shade with, in the basis it holds). The one reader
 // every command uses. Throws InputError naming the file and what is missing or inconsistent.
-Volume readVolume(const std::string& path);
+// `parts`: how much of a shard's part to hold (VolumeHeader.h).
+Volume readVolume(const std::string& path, PartReading parts = PartReading::EveryProbe);
 
 // Which format `path` holds, by its name or the files in its directory: "vdb", "exr", "bevy",
 // "threejs". InputError for a directory of none of them or a missing file.

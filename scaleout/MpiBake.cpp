@@ -1,7 +1,5 @@
 #include "scaleout/MpiBake.h"
 
-#include <fmt/format.h>
-
 #include <chrono>
 #include <thread>
 
@@ -48,23 +46,27 @@ MpiBakeReport bakeWithMpi(const MpiSession& session, const BakeJob& job, const V
     throw std::logic_error("bakeWithMpi: the job's shard must be rank/size");
   MpiBakeReport report;
   const auto start = std::chrono::steady_clock::now();
-  const Volume part = job.bake(&report.stats, progress);
+  Volume part = job.bake(&report.stats, progress);
   report.bakeSeconds = secondsSince(start);
   const std::vector<double> summaries =
       session.gatherToRoot(rankSummary(report, job.request().threads));
   const std::vector<std::int64_t> bricks = shardBricks(part.grid, *shard);
   if (session.rank() != 0) {
-    session.sendToRoot(packBricks(part, bricks));
+    const std::vector<float> packed = packBricks(part, bricks);
+    part = Volume();  // sent as packed: hold one copy of the share, not two
+    session.sendToRoot(packed);
     return report;
   }
   readSummaries(summaries, report);
   const auto gatherStart = std::chrono::steady_clock::now();
-  VolumeAssembly assembly(part, fmt::format("rank 0"));
+  VolumeAssembly assembly(part, "rank 0");
   assembly.addPacked(*shard, packBricks(part, bricks));
+  const ProbeGrid grid = part.grid;
+  const int nc = part.coefficientsPerProbe, nv = part.visibilityPerProbe;
+  part = Volume();  // in the assembly now: hold the whole volume, not this share as well
   for (int r = 1; r < session.size(); ++r) {
     const Shard theirs{r, session.size()};
-    std::vector<float> values(packedSize(part.grid, shardBricks(part.grid, theirs), part.coefficientsPerProbe,
-                                         part.visibilityPerProbe));
+    std::vector<float> values(packedSize(grid, shardBricks(grid, theirs), nc, nv));
     session.receiveFrom(r, values);
     assembly.addPacked(theirs, values);
   }

@@ -1,3 +1,4 @@
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,7 +12,9 @@
 #include <vector>
 
 #include "bake/Baker.h"
+#include "common/Error.h"
 #include "basis/BasisRegistry.h"
+#include "formats/VdbWriter.h"
 #include "formats/VolumeReader.h"
 #include "tests/BakerProcess.h"
 #include "tests/TestData.h"
@@ -172,6 +175,40 @@ TEST(Shards, AShardsBakeHoldsOnlyItsBricks) {
   EXPECT_EQ(part.coefficients.size(), std::size_t(2 * 512 * part.coefficientsPerProbe));
   for (const std::int64_t b : shardBricks(grid, {1, 3}))
     for (const std::int64_t p : probesOfBrick(grid, b)) ASSERT_EQ(part.states[part.rowOf(p)], ProbeState::Valid);
+}
+
+// The merge reads a part as its own bricks only (the whole volume and one share in memory, not
+// two whole volumes): the same values, and a probe of another shard's brick is refused.
+TEST(Shards, APartReadAsItsOwnBricksHoldsItsValuesAndRefusesAnotherShardsProbe) {
+  const Scene scene;
+  const RayTracer tracer(scene);
+  const auto basis = makeBasis("sh-l1");
+  ProbeGrid grid;
+  grid.dims = {20, 9, 8};  // 3 × 2 × 1 bricks, partial on x and y
+  BakeSettings settings;
+  settings.rays = 4;
+  const Volume part = bakeVolume(scene, tracer, *basis, grid, settings, nullptr, {}, Shard{0, 2});
+  const std::string dir = test::makeTempDir("own_bricks");
+  writeVdb(part, *basis, dir + "/part.vdb");
+  const Volume back = readVolume(dir + "/part.vdb", PartReading::OwnBricks);
+  ASSERT_EQ(back.rows.count(grid), part.rows.count(grid));
+  for (const std::int64_t b : shardBricks(grid, {0, 2}))
+    for (const std::int64_t p : probesOfBrick(grid, b))
+      for (int c = 0; c < part.coefficientsPerProbe; ++c)
+        ASSERT_EQ(back.probe(p)[c], part.probe(p)[c]) << "probe " << p;
+
+  Volume stray = readVolume(dir + "/part.vdb");  // every probe: zeros outside its bricks
+  const std::int64_t other = probesOfBrick(grid, shardBricks(grid, {1, 2}).front()).front();
+  stray.states[std::size_t(other)] = ProbeState::Valid;
+  writeVdb(stray, *basis, dir + "/stray.vdb");
+  try {
+    readVolume(dir + "/stray.vdb", PartReading::OwnBricks);
+    ADD_FAILURE() << "read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(fmt::format("holds probe {}, outside the bricks of its shard 0/2", other)),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 class MergeRefuses : public ::testing::Test {

@@ -36,4 +36,12 @@ std::int64_t ProbeRows::row(const ProbeGrid& grid, std::int64_t probe) const {
   return row(grid, int(probe % nx), int(probe / nx % ny), int(probe / (nx * ny)));
 }
 
+std::int64_t ProbeRows::probeAt(const ProbeGrid& grid, std::int64_t row) const {
+  if (holdsEveryProbe()) return row >= 0 && row < grid.probeCount() ? row : -1;
+  // A search through the grid: only an error message asks.
+  for (std::int64_t p = 0; p < grid.probeCount(); ++p)
+    if (this->row(grid, p) == row) return p;
+  return -1;
+}
+
 }  // namespace baker

@@ -21,6 +21,8 @@ class ProbeRows {
   // The row of probe (i, j, k) of `grid`, or -1 when it is not held.
   std::int64_t row(const ProbeGrid& grid, int i, int j, int k) const;
   std::int64_t row(const ProbeGrid& grid, std::int64_t probe) const;
+  // The probe in row `row` (-1 for none): for messages, which name probes, not rows.
+  std::int64_t probeAt(const ProbeGrid& grid, std::int64_t row) const;
 
  private:
   std::vector<std::int64_t> firstRowOfBrick_;  // by linear brick index, -1 for a brick not held

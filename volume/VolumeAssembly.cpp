@@ -84,14 +84,16 @@ void VolumeAssembly::add(const Volume& part, const std::string& name) {
   if (part.states.empty()) throw InputError(fmt::format("{}: has no probe_state grid; a shard's part has one", name));
   const Shard shard = *part.shard;
   // A probe baked outside the part's own bricks would be a brick given twice, or a part of
-  // another partition.
-  const std::vector<int> shardOf = shardOfBricks(part.grid, shard.count);
-  for (std::size_t b = 0; b < shardOf.size(); ++b) {
-    if (shardOf[b] == shard.index) continue;
-    for (const std::int64_t p : probesOfBrick(part.grid, std::int64_t(b)))
-      if (const std::int64_t row = part.rowOf(p); row >= 0 && part.states[row] != ProbeState::Invalid)
-        throw InputError(fmt::format("{}: holds probe {} of brick {}, which belongs to shard {}/{}, not to its own "
-                                     "shard {}", name, p, b, shardOf[b], shard.count, shardName(shard)));
+  // another partition. A part held as its own bricks only has none: its reader refused them.
+  if (part.rows.holdsEveryProbe()) {
+    const std::vector<int> shardOf = shardOfBricks(part.grid, shard.count);
+    for (std::size_t b = 0; b < shardOf.size(); ++b) {
+      if (shardOf[b] == shard.index) continue;
+      for (const std::int64_t p : probesOfBrick(part.grid, std::int64_t(b)))
+        if (part.states[p] != ProbeState::Invalid)
+          throw InputError(fmt::format("{}: holds probe {} of brick {}, which belongs to shard {}/{}, not to its own "
+                                       "shard {}", name, p, b, shardOf[b], shard.count, shardName(shard)));
+    }
   }
   claim(shard, name);
   addPacked(shard, packBricks(part, shardBricks(part.grid, shard)));
