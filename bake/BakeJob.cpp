@@ -76,7 +76,8 @@ ProbeGrid defaultGrid(const Eigen::AlignedBox3f& bounds, const Basis& basis, std
   }
   if (spacing != firstSpacing)
     reason = fmt::format("widened from the default {:.4g} m, whose {:.3g} probes would need {:.3g} GiB, more than this "
-                         "machine's {:.3g} GiB (or the limit of {} probes); give a spacing to choose another",
+                         "machine's {:.3g} GiB (or the limit of {} probes); give a spacing to choose another (baked in shards, "
+                         "each machine holds its share and the merge the whole volume: docs/SCALING.md)",
                          firstSpacing, probesPerAxis(bounds, firstSpacing).prod(),
                          probesPerAxis(bounds, firstSpacing).prod() * bytesPerProbe / double(1ull << 30),
                          double(physicalMemoryBytes()) / double(1ull << 30), kMaxBakeProbes);
