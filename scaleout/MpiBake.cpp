@@ -50,9 +50,8 @@ MpiBakeReport bakeWithMpi(const MpiSession& session, const BakeJob& job, const V
   report.bakeSeconds = secondsSince(start);
   const std::vector<double> summaries =
       session.gatherToRoot(rankSummary(report, job.request().threads));
-  const std::vector<std::int64_t> bricks = shardBricks(part.grid, *shard);
   if (session.rank() != 0) {
-    const std::vector<float> packed = packBricks(part, bricks);
+    const std::vector<float> packed = packBricks(part, shardBricks(part.grid, *shard));
     part = Volume();  // sent as packed: hold one copy of the share, not two
     session.sendToRoot(packed);
     return report;
@@ -60,7 +59,7 @@ MpiBakeReport bakeWithMpi(const MpiSession& session, const BakeJob& job, const V
   readSummaries(summaries, report);
   const auto gatherStart = std::chrono::steady_clock::now();
   VolumeAssembly assembly(part, "rank 0");
-  assembly.addPacked(*shard, packBricks(part, bricks));
+  assembly.addBaked(part);
   const ProbeGrid grid = part.grid;
   const int nc = part.coefficientsPerProbe, nv = part.visibilityPerProbe;
   part = Volume();  // in the assembly now: hold the whole volume, not this share as well

@@ -96,7 +96,27 @@ void VolumeAssembly::add(const Volume& part, const std::string& name) {
     }
   }
   claim(shard, name);
-  addPacked(shard, packBricks(part, shardBricks(part.grid, shard)));
+  copyBricks(part, shard);
+}
+
+void VolumeAssembly::addBaked(const Volume& part) {
+  if (!part.shard || part.shard->count != whole_.shard->count || part.grid.dims != whole_.grid.dims)
+    throw std::logic_error("VolumeAssembly::addBaked: not a part of this bake");
+  claim(*part.shard, "shard " + shardName(*part.shard));
+  copyBricks(part, *part.shard);
+}
+
+void VolumeAssembly::copyBricks(const Volume& part, const Shard& shard) {
+  const int nc = whole_.coefficientsPerProbe, nv = whole_.visibilityPerProbe;
+  for (const std::int64_t b : shardBricks(whole_.grid, shard))
+    for (const std::int64_t p : probesOfBrick(whole_.grid, b)) {
+      const std::int64_t r = part.rowOf(p);
+      if (r < 0) throw std::logic_error("VolumeAssembly: a part without one of its own bricks");
+      whole_.states[p] = part.states[r];
+      whole_.offsets[p] = part.offsets[r];
+      std::copy_n(part.coefficients.begin() + r * nc, nc, whole_.coefficients.begin() + p * nc);
+      std::copy_n(part.visibility.begin() + r * nv, nv, whole_.visibility.begin() + p * nv);
+    }
 }
 
 void VolumeAssembly::addPacked(const Shard& shard, const std::vector<float>& packed) {

@@ -20,6 +20,9 @@ class VolumeAssembly {
   // Adds a part: the same bake as the first, a shard not given before, nothing baked outside its
   // own bricks.
   void add(const Volume& part, const std::string& name);
+  // Adds a part baked in this process (an MPI rank's own), copied as it is: no file, so nothing
+  // to check but the shard.
+  void addBaked(const Volume& part);
   // Adds the values of shard `shard`'s bricks as packBricks wrote them (a rank's part sent over
   // MPI): no file, so nothing to check but the shard and the size.
   void addPacked(const Shard& shard, const std::vector<float>& packed);
@@ -28,6 +31,8 @@ class VolumeAssembly {
 
  private:
   void claim(const Shard& shard, const std::string& name);
+  // The values of `shard`'s bricks from `part`, straight into the whole volume (no packed copy).
+  void copyBricks(const Volume& part, const Shard& shard);
 
   Volume whole_;
   std::string firstName_;
