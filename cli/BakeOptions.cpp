@@ -62,7 +62,7 @@ std::unique_ptr<BakeJob> prepareBake(const CLI::App& app, const BakeOptions& opt
   log << fmt::format("grid: {} × {} × {} = {} probes, spacing {:.4g} m ({}), {:.3g} GiB at the peak{}\n", g.dims.x(),
                      g.dims.y(), g.dims.z(), g.probeCount(), g.spacing, job->spacingReason(),
                      bakeMemoryBytes(g, shards, job->basis()) / double(1ull << 30),
-                     shards > 1 ? " per shard (the merge holds the whole volume)" : "");
+                     shards > 1 ? " per shard (the merge, or rank 0 under MPI, holds the whole volume)" : "");
   printPlan(log, job->plan());
   return job;
 }

@@ -220,11 +220,12 @@ void readSlice(const std::filesystem::path& dir, const Manifest& manifest, int k
         } else if (scaled(*grid)) {
           value = float(double(value) * scale);
         }
-        // A part read as its own bricks only skips the others, which must be Invalid and zero as
-        // the part's writer left them (the same check as VolumeAssembly::add's).
-        if (!setGridValue(volume, *grid, c, p, value) && grid->kind == VolumeGrid::Kind::ProbeState && value != 0.0f)
-          throw InputError(fmt::format("{}: probe at ({}, {}) has state {}, outside the bricks of its shard {}",
-                                       slicePath, i, j, value, shardName(*volume.shard)));
+        // A part read as its own bricks only skips the others, which must be zero (Invalid) as the
+        // part's writer left them.
+        if (!setGridValue(volume, *grid, c, p, value) && value != 0.0f)
+          throw InputError(fmt::format("{}: probe at ({}, {}) has {} = {}, outside the bricks of its shard {} (a part "
+                                       "stores zeros there)",
+                                       slicePath, i, j, componentName(*grid, c), value, shardName(*volume.shard)));
       }
     }
 }

@@ -111,7 +111,7 @@ void writeVdb(const Volume& volume, const Basis& basis, const std::string& path)
     const VolumeGrid& spec = specs[std::size_t(index)];
     openvdb::GridBase::Ptr grid;
     if (spec.kind == VolumeGrid::Kind::ProbeState)
-      grid = sparseGrid<openvdb::Int32Grid>(volume, stored, [&](std::int64_t p) { return int(volume.states[volume.rowOf(p)]); });
+      grid = sparseGrid<openvdb::Int32Grid>(volume, stored, [&](std::int64_t p) { return int(gridValue(volume, spec, 0, p)); });
     else if (spec.components == 3)
       grid = sparseGrid<openvdb::Vec3SGrid>(volume, stored, [&](std::int64_t p) {
         return openvdb::Vec3s(gridValue(volume, spec, 0, p), gridValue(volume, spec, 1, p), gridValue(volume, spec, 2, p));

@@ -48,7 +48,8 @@ Volume VolumeHeader::emptyVolume(const std::string& path, PartReading parts) con
   const Eigen::Vector3i& d = grid.dims;
   if (d.x() <= 0 || d.y() <= 0 || d.z() <= 0 || double(d.x()) * d.y() * d.z() > kMaxProbesRead)
     throw InputError(fmt::format("{}: baker.dims ({}, {}, {}) is not a valid grid size", path, d.x(), d.y(), d.z()));
-  // Half of the bake's estimate: reading holds the volume once. Checked before allocating, so
+  // Half of the bake's estimate: reading holds the volume once (a part read as its own bricks
+  // holds less, but the merge reading it holds the whole volume). Checked before allocating, so
   // that a damaged size is refused rather than exhausting memory.
   const double needed = volumeMemoryBytes(double(d.x()) * d.y() * d.z(), *basis) / 2;
   if (needed > double(physicalMemoryBytes()))

@@ -93,9 +93,10 @@ void requireFiniteVolume(const Volume& v) {
     for (std::size_t i = 0; i < values->size(); ++i)
       if (!std::isfinite((*values)[i]))
         throw std::runtime_error(fmt::format("internal error: probe {} has a non-finite value; nothing written",
-                                             i / std::max<std::size_t>(1, values == &v.coefficients
-                                                                              ? v.coefficientsPerProbe
-                                                                              : v.visibilityPerProbe)));
+                                             v.rows.probeAt(v.grid, std::int64_t(i / std::max<std::size_t>(
+                                                                        1, values == &v.coefficients
+                                                                               ? v.coefficientsPerProbe
+                                                                               : v.visibilityPerProbe)))));
 }
 
 }  // namespace baker

@@ -6,6 +6,7 @@
 #include "common/Error.h"
 #include "common/PeakMemory.h"
 #include "common/Timing.h"
+#include "volume/MemoryEstimate.h"
 #include "volume/VolumeAssembly.h"
 
 namespace baker {
@@ -44,6 +45,9 @@ MpiBakeReport bakeWithMpi(const MpiSession& session, const BakeJob& job, const V
   const std::optional<Shard>& shard = job.request().shard;
   if (!shard || shard->index != session.rank() || shard->count != session.size())
     throw std::logic_error("bakeWithMpi: the job's shard must be rank/size");
+  // Rank 0 will hold the whole volume: refused before it traces (its failure stops every rank),
+  // not after hours of baking.
+  if (session.rank() == 0) requireVolumeFitsInMemory(job.grid(), 1, job.basis(), physicalMemoryBytes());
   MpiBakeReport report;
   const auto start = std::chrono::steady_clock::now();
   Volume part = job.bake(&report.stats, progress);
@@ -52,7 +56,7 @@ MpiBakeReport bakeWithMpi(const MpiSession& session, const BakeJob& job, const V
       session.gatherToRoot(rankSummary(report, job.request().threads));
   if (session.rank() != 0) {
     const std::vector<float> packed = packBricks(part, shardBricks(part.grid, *shard));
-    part = Volume();  // sent as packed: hold one copy of the share, not two
+    part = Volume();  // sent as packed: one copy of the share while sending
     session.sendToRoot(packed);
     return report;
   }

@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "common/Error.h"
@@ -26,9 +28,13 @@ std::uint64_t physicalMemoryBytes() {
 double bakeMemoryBytes(const ProbeGrid& grid, int shardCount, const Basis& basis) {
   const double probes = double(grid.dims.x()) * double(grid.dims.y()) * double(grid.dims.z());
   if (shardCount <= 1) return volumeMemoryBytes(probes, basis);
+  const Eigen::Vector3d counts = grid.brickCounts().cast<double>();
+  const double bricks = counts.prod();
+  // A shard is a run of whole bricks, at most ⌈B/N⌉ of them, and full bricks can come first.
+  const double shardProbes = std::min(probes, std::ceil(bricks / shardCount) * std::pow(double(kBrickSize), 3));
   // The Morton order of every brick (index and key) and the brick-to-row table.
-  const double brickTables = 3.0 * sizeof(std::int64_t) * double(grid.brickCount());
-  return volumeMemoryBytes(probes / shardCount, basis) + brickTables;
+  const double brickTables = 3.0 * sizeof(std::int64_t) * bricks;
+  return volumeMemoryBytes(shardProbes, basis) + brickTables;
 }
 
 void requireVolumeFitsInMemory(const ProbeGrid& grid, int shardCount, const Basis& basis, std::uint64_t availableBytes) {

@@ -32,6 +32,7 @@ std::int64_t ProbeRows::row(const ProbeGrid& grid, int i, int j, int k) const {
 
 std::int64_t ProbeRows::row(const ProbeGrid& grid, std::int64_t probe) const {
   if (holdsEveryProbe()) return probe;
+  if (probe < 0 || probe >= grid.probeCount()) return -1;
   const std::int64_t nx = grid.dims.x(), ny = grid.dims.y();
   return row(grid, int(probe % nx), int(probe / nx % ny), int(probe / (nx * ny)));
 }

@@ -32,7 +32,8 @@ struct Volume {
   // What produced it (rays, scene file, ...): written to the file's metadata as it is.
   std::map<std::string, std::string> settings;
   // Set on a part of a bake cut into shards: only the shard's bricks were baked (every other
-  // probe is Invalid and zero), and its Invalid probes are not filled until the parts are merged.
+  // probe is Invalid and zero, or not held at all: `rows`), and its Invalid probes are not
+  // filled until the parts are merged.
   std::optional<Shard> shard;
 
   std::int64_t rowOf(std::int64_t probe) const { return rows.row(grid, probe); }

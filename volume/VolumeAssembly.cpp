@@ -83,18 +83,10 @@ void VolumeAssembly::add(const Volume& part, const std::string& name) {
   requireSameBake(part, name, whole_, firstName_);
   if (part.states.empty()) throw InputError(fmt::format("{}: has no probe_state grid; a shard's part has one", name));
   const Shard shard = *part.shard;
-  // A probe baked outside the part's own bricks would be a brick given twice, or a part of
-  // another partition. A part held as its own bricks only has none: its reader refused them.
-  if (part.rows.holdsEveryProbe()) {
-    const std::vector<int> shardOf = shardOfBricks(part.grid, shard.count);
-    for (std::size_t b = 0; b < shardOf.size(); ++b) {
-      if (shardOf[b] == shard.index) continue;
-      for (const std::int64_t p : probesOfBrick(part.grid, std::int64_t(b)))
-        if (part.states[p] != ProbeState::Invalid)
-          throw InputError(fmt::format("{}: holds probe {} of brick {}, which belongs to shard {}/{}, not to its own "
-                                       "shard {}", name, p, b, shardOf[b], shard.count, shardName(shard)));
-    }
-  }
+  // A probe outside the part's own bricks would be a brick given twice, or a part of another
+  // partition: its reader refused those, reading the part as its own bricks only.
+  if (part.rows.holdsEveryProbe())
+    throw std::logic_error("VolumeAssembly::add: read parts with PartReading::OwnBricks");
   claim(shard, name);
   copyBricks(part, shard);
 }
@@ -122,7 +114,7 @@ void VolumeAssembly::copyBricks(const Volume& part, const Shard& shard) {
 void VolumeAssembly::addPacked(const Shard& shard, const std::vector<float>& packed) {
   if (shard.count != whole_.shard->count)
     throw InputError(fmt::format("shard {}: the bake has {} shards", shardName(shard), whole_.shard->count));
-  if (given_[std::size_t(shard.index)].empty()) claim(shard, "shard " + shardName(shard));
+  claim(shard, "shard " + shardName(shard));
   const std::vector<std::int64_t> bricks = shardBricks(whole_.grid, shard);
   const int nc = whole_.coefficientsPerProbe, nv = whole_.visibilityPerProbe;
   if (packed.size() != packedSize(whole_.grid, bricks, nc, nv))
