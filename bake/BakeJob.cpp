@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "bake/AdaptiveBaker.h"
 #include "bake/ProbeConvergence.h"
 #include "bake/TransportPlan.h"
 #include "basis/BasisRegistry.h"
@@ -50,6 +51,11 @@ void recordSettings(const BakeJob& job, Volume& volume) {
   volume.settings["window"] = std::to_string(request.window.hannWidth);
   volume.settings["non_negative"] = request.nonNegative ? "true" : "false";
   for (const auto& [key, value] : job.basis().parameters()) volume.settings[key] = fmt::format("{}", value);
+  if (job.placement()) {
+    volume.settings["placement"] = "adaptive";
+    volume.settings["levels"] = std::to_string(job.placement()->levels());
+    volume.settings["margin_cells"] = std::to_string(job.placement()->marginCells);
+  }
   volume.settings["scene"] = std::filesystem::path(request.scenePath).filename().string();
   volume.settings["scene_fnv1a64"] = fileHash(request.scenePath);
 }
@@ -94,7 +100,13 @@ BakeJob::BakeJob(BakeRequest request, RayObserver* observer) : request_(std::mov
   const auto start = std::chrono::steady_clock::now();
   scene_ = std::make_unique<Scene>(loadGltf(request_.scenePath, request_.scene));
   loadSeconds_ = secondsSince(start);
-  if (request_.spacing) {
+  ProbeGrid finestGrid;
+  if (request_.adaptive()) {
+    const double finest = request_.spacing ? *request_.spacing : defaultSpacing(scene_->bounds);
+    spacingReason_ = request_.spacing ? "as given, at the finest level" : "the default, at the finest level";
+    finestGrid = makeProbeGrid(scene_->bounds, finest, std::int64_t(kMaxLevelGridProbes));
+    grid_ = levelGrids(finestGrid, request_.levels).front();
+  } else if (request_.spacing) {
     grid_ = makeProbeGrid(scene_->bounds, *request_.spacing, kMaxBakeProbes);
     spacingReason_ = "as given";
   } else {
@@ -106,6 +118,9 @@ BakeJob::BakeJob(BakeRequest request, RayObserver* observer) : request_(std::mov
   const auto bvhStart = std::chrono::steady_clock::now();
   tracer_ = std::make_unique<RayTracer>(*scene_, settings_.transport.alphaFilters, observer);
   bvhSeconds_ = secondsSince(bvhStart);
+  if (request_.adaptive())
+    placement_ = std::make_unique<AdaptivePlacement>(
+        placeAdaptive(*scene_, *tracer_, finestGrid, request_.levels, request_.marginCells, kMaxBakeProbes));
 }
 
 BakeJob::~BakeJob() = default;
@@ -116,8 +131,21 @@ std::int64_t BakeJob::rayLimit() const {
 }
 
 Volume BakeJob::bake(BakeStats* stats, const std::function<void(std::int64_t, std::int64_t)>& progress) const {
+  if (placement_) throw std::logic_error("BakeJob::bake: an adaptive bake has levels (bakeLevels)");
   Volume volume = bakeVolume(*scene_, *tracer_, *basis_, grid_, settings_, stats, progress, request_.shard);
   recordSettings(*this, volume);
+  return volume;
+}
+
+AdaptiveVolume BakeJob::bakeLevels(BakeStats* stats,
+                                   const std::function<void(std::int64_t, std::int64_t)>& progress) const {
+  if (!placement_) {
+    AdaptiveVolume volume;
+    volume.levels.push_back(bake(stats, progress));
+    return volume;
+  }
+  AdaptiveVolume volume = bakeAdaptive(*scene_, *tracer_, *basis_, *placement_, settings_, stats, progress);
+  recordSettings(*this, volume.levels.front());
   return volume;
 }
 

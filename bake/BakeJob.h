@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "bake/AdaptivePlacement.h"
 #include "bake/BakeRequest.h"
 #include "bake/Baker.h"
 #include "bake/ProbeBaker.h"
@@ -16,6 +17,7 @@
 #include "scene/RayTracer.h"
 #include "scene/Scene.h"
 #include "scene/SceneEffects.h"
+#include "volume/AdaptiveVolume.h"
 #include "volume/ProbeGrid.h"
 #include "volume/Volume.h"
 
@@ -37,7 +39,10 @@ class BakeJob {
   const Basis& basis() const { return *basis_; }
   const Scene& scene() const { return *scene_; }
   const RayTracer& tracer() const { return *tracer_; }
+  // The grid: a uniform bake's, or an adaptive bake's coarsest level.
   const ProbeGrid& grid() const { return grid_; }
+  // Where an adaptive bake's probes go, decided when the job is made; null for a uniform bake.
+  const AdaptivePlacement* placement() const { return placement_.get(); }
   // How the grid's spacing was chosen: "as given", or the default and why it is what it is.
   const std::string& spacingReason() const { return spacingReason_; }
   const std::vector<PlannedEffect>& plan() const { return plan_; }
@@ -49,7 +54,11 @@ class BakeJob {
 
   // Every probe of the grid; the volume's `settings` record what made it (FORMAT.md).
   // `progress` hears (bricks done, bricks in all) from worker threads.
+  // A uniform bake only (std::logic_error otherwise).
   Volume bake(BakeStats* stats = nullptr, const std::function<void(std::int64_t, std::int64_t)>& progress = {}) const;
+  // Every level of an adaptive bake, or the one level of a uniform one.
+  AdaptiveVolume bakeLevels(BakeStats* stats = nullptr,
+                            const std::function<void(std::int64_t, std::int64_t)>& progress = {}) const;
   // Probes at these positions, placed and traced as the grid's would be (ids 0, 1, ...).
   BakedProbes probesAt(const std::vector<Eigen::Vector3f>& positions) const;
 
@@ -60,6 +69,7 @@ class BakeJob {
   std::unique_ptr<Scene> scene_;
   std::unique_ptr<RayTracer> tracer_;
   ProbeGrid grid_;
+  std::unique_ptr<AdaptivePlacement> placement_;
   std::string spacingReason_;
   std::vector<PlannedEffect> plan_;
   BakeSettings settings_;

@@ -27,6 +27,14 @@ void validateBakeRequest(const BakeRequest& r) {
                    r.shard->index < r.shard->count))
     throw SettingError("shard", fmt::format("must be K/N with 0 <= K < N <= {}, got {}", kMaxShards,
                                             shardName(*r.shard)));
+  if (r.placement != "uniform" && r.placement != "adaptive")
+    throw SettingError("placement", fmt::format("must be uniform or adaptive, got '{}'", r.placement));
+  if (r.levels < 1 || r.levels > kMaxLevels)
+    throw SettingError("levels", fmt::format("must be in 1..{}, got {}", kMaxLevels, r.levels));
+  if (r.marginCells < 0 || r.marginCells > kMaxMarginCells)
+    throw SettingError("margin", fmt::format("must be in 0..{} cells, got {}", kMaxMarginCells, r.marginCells));
+  if (r.adaptive() && r.shard)
+    throw SettingError("shard", "an adaptive bake is not cut into shards yet; bake it whole, or with uniform placement");
   requireKnownEffects(r.turnedOff);
   const std::unique_ptr<Basis> basis = makeBasis(r.basis, r.sgSharpness);
   if (r.nonNegative && !admitsNonNegativeFit(*basis))

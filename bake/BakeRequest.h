@@ -6,6 +6,7 @@
 
 #include "basis/GramOperators.h"
 #include "scene/SceneOptions.h"
+#include "volume/LevelGrids.h"
 #include "volume/Shard.h"
 
 namespace baker {
@@ -39,6 +40,13 @@ struct BakeRequest {
   bool nonNegative = false;            // coefficients >= 0 by a per-probe constrained solve
   // Bake only this shard's bricks (volume/Shard.h), a part for merging; none: the whole grid.
   std::optional<Shard> shard;
+  // "uniform": one grid at `spacing`. "adaptive": `levels` nested levels (volume/LevelGrids.h),
+  // the finest at `spacing`, its bricks placed near geometry (bake/AdaptivePlacement.h).
+  std::string placement = "uniform";
+  int levels = 3;
+  int marginCells = kDefaultMarginCells;
+
+  bool adaptive() const { return placement == "adaptive"; }
 };
 
 // Every check that needs no scene: values in range, names known, combinations that make sense.

@@ -24,24 +24,25 @@ int rotationOf(int i, int j, int k) { return (i & 1) + 2 * (j & 1) + 4 * (k & 1)
 
 // The probes of brick `brick`: placed (moved out of geometry, or marked invalid) and traced,
 // their coefficients and sky visibility written into `volume`.
-void bakeBrick(const RayTracer& tracer, const ProbeGrid& grid, const BakeSettings& settings,
-               const ProbeBaker& probeBaker, const std::vector<Eigen::Vector3f>& testDirections,
-               const Eigen::Vector3i& brick, Volume& volume, RayCounts& counts, RoundTally& tally,
-               std::vector<float>& coefficients, std::vector<float>& visibility) {
-  const Eigen::Vector3i lo = brick * kBrickSize;
-  const Eigen::Vector3i hi = (lo.array() + kBrickSize).min(grid.dims.array());
+void bakeBrick(const RayTracer& tracer, const BakeSettings& settings, const ProbeBaker& probeBaker,
+               const std::vector<Eigen::Vector3f>& testDirections, std::int64_t brick, std::uint64_t firstId,
+               Volume& volume, RayCounts& counts, RoundTally& tally, std::vector<float>& coefficients,
+               std::vector<float>& visibility) {
+  const ProbeGrid& grid = volume.grid;
+  const Eigen::Vector3i lo = grid.brickCorner(brick);
+  const Eigen::Vector3i hi = lo + grid.brickExtent(brick);
   std::vector<ProbeTask> candidates;
+  std::vector<std::int64_t> rows;  // each candidate's row in the volume's arrays
   for (int k = lo.z(); k < hi.z(); ++k)
     for (int j = lo.y(); j < hi.y(); ++j)
-      for (int i = lo.x(); i < hi.x(); ++i)
-        candidates.push_back({grid.position(i, j, k).cast<float>(), std::uint64_t(grid.linearIndex(i, j, k)),
+      for (int i = lo.x(); i < hi.x(); ++i) {
+        const std::int64_t row = volume.rows.row(grid, i, j, k);
+        if (volume.states[row] == ProbeState::Interpolated) continue;
+        volume.states[row] = ProbeState::Valid;
+        rows.push_back(row);
+        candidates.push_back({grid.position(i, j, k).cast<float>(), firstId + std::uint64_t(grid.linearIndex(i, j, k)),
                               rotationOf(i, j, k)});
-  // Each candidate's row in the volume's arrays (the probe's index in a whole volume).
-  std::vector<std::int64_t> rows(candidates.size());
-  for (std::size_t c = 0; c < candidates.size(); ++c) {
-    rows[c] = volume.rowOf(std::int64_t(candidates[c].id));
-    volume.states[rows[c]] = ProbeState::Valid;
-  }
+      }
   if (settings.transport.probeValidity) {
     const ValidityOptions validityOptions;
     // Placed side by side like the probes' tracing (ProbeBaker::bake). Isolated so that a
@@ -76,8 +77,9 @@ void bakeBrick(const RayTracer& tracer, const ProbeGrid& grid, const BakeSetting
   }
 }
 
-// No NaN or Inf reaches a file.
-void requireFinite(const Volume& volume) {
+}  // namespace
+
+void requireFiniteBake(const Volume& volume) {
   for (std::size_t i = 0; i < volume.coefficients.size(); ++i)
     if (!std::isfinite(volume.coefficients[i]))
       throw NumericalError(fmt::format("probe {} of the bake has a non-finite coefficient (the scene's radiance "
@@ -89,6 +91,8 @@ void requireFinite(const Volume& volume) {
                                        volume.rows.probeAt(volume.grid, std::int64_t(i) / volume.visibilityPerProbe)));
 }
 
+namespace {
+
 // Every brick in linear order, or the shard's.
 std::vector<std::int64_t> bricksToBake(const ProbeGrid& grid, const std::optional<Shard>& shard) {
   if (shard) return shardBricks(grid, *shard);
@@ -98,15 +102,25 @@ std::vector<std::int64_t> bricksToBake(const ProbeGrid& grid, const std::optiona
   return all;
 }
 
-// Zeros, every probe Invalid until its brick is baked. A shard's part holds only the shard's
-// bricks, so that its memory follows the shard rather than the grid.
-Volume emptyVolume(const ProbeGrid& grid, const ProbeRows& rows, const Basis& basis, const ProbeBaker& probeBaker) {
+}  // namespace
+
+BrickBaker::BrickBaker(const Scene& scene, const RayTracer& tracer, const Basis& basis, const BakeSettings& settings)
+    : tracer_(tracer), basis_(basis), settings_(settings), testDirections_(validityDirections(ValidityOptions{})) {
+  if (settings.rays <= 0) throw SettingError("rays", fmt::format("must be positive, got {}", settings.rays));
+  const auto start = std::chrono::steady_clock::now();
+  probeBaker_ = std::make_unique<ProbeBaker>(scene, tracer, basis, settings, kRotations);
+  operatorSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+BrickBaker::~BrickBaker() = default;
+
+Volume BrickBaker::emptyVolume(const ProbeGrid& grid, const ProbeRows& rows) const {
   Volume volume;
   volume.grid = grid;
   volume.rows = rows;
-  volume.basisName = basis.name();
-  volume.coefficientsPerProbe = probeBaker.coefficientsPerProbe();
-  volume.visibilityPerProbe = probeBaker.visibilityPerProbe();
+  volume.basisName = basis_.name();
+  volume.coefficientsPerProbe = probeBaker_->coefficientsPerProbe();
+  volume.visibilityPerProbe = probeBaker_->visibilityPerProbe();
   const std::size_t probes = std::size_t(volume.rows.count(grid));
   volume.coefficients.assign(probes * volume.coefficientsPerProbe, 0.0f);
   volume.visibility.assign(probes * volume.visibilityPerProbe, 0.0f);
@@ -115,7 +129,43 @@ Volume emptyVolume(const ProbeGrid& grid, const ProbeRows& rows, const Basis& ba
   return volume;
 }
 
-}  // namespace
+void BrickBaker::bake(Volume& volume, const std::vector<std::int64_t>& bricks, std::uint64_t firstId, BakeStats* stats,
+                      const std::function<void()>& brickDone) const {
+  const auto start = std::chrono::steady_clock::now();
+  const int brickCount = int(bricks.size());
+  std::vector<RayCounts> brickRays(brickCount);
+  std::vector<RoundTally> brickTallies(brickCount);
+  tbb::parallel_for(tbb::blocked_range<int>(0, brickCount, 1), [&](const tbb::blocked_range<int>& range) {
+    std::vector<float> coefficients, visibility;
+    for (int n = range.begin(); n < range.end(); ++n) {
+      bakeBrick(tracer_, settings_, *probeBaker_, testDirections_, bricks[n], firstId, volume, brickRays[n],
+                brickTallies[n], coefficients, visibility);
+      if (brickDone) brickDone();
+    }
+  });
+  if (!stats) return;
+  for (const std::int64_t b : bricks) stats->probes += volume.grid.brickExtent(b).cast<std::int64_t>().prod();
+  stats->bricks += brickCount;
+  for (const RayCounts& c : brickRays) stats->rays += c;  // in brick order: the same sums every run
+  for (const RoundTally& t : brickTallies) stats->lattice += t;
+  stats->traceSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void BrickBaker::finishStats(const std::vector<const Volume*>& volumes, BakeStats* stats) const {
+  if (!stats) return;
+  stats->raysPerProbe = settings_.rays;
+  for (const Volume* volume : volumes)
+    for (ProbeState s : volume->states) {
+      stats->validProbes += s == ProbeState::Valid;
+      stats->relocatedProbes += s == ProbeState::Relocated;
+      stats->interpolatedProbes += s == ProbeState::Interpolated;
+    }
+  stats->invalidProbes = stats->probes - stats->validProbes - stats->relocatedProbes - stats->interpolatedProbes;
+  stats->conditionNumber = probeBaker_->conditionNumber();
+  stats->shOrder = probeBaker_->shOrder();
+  stats->projectionSeconds = probeBaker_->projectionSeconds();
+  stats->operatorSeconds = operatorSeconds_;
+}
 
 Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basis, const ProbeGrid& grid,
                   const BakeSettings& settings, BakeStats* stats,
@@ -124,55 +174,22 @@ Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basi
   if (settings.rays <= 0) throw SettingError("rays", fmt::format("must be positive, got {}", settings.rays));
   requireVolumeFitsInMemory(grid, shard ? shard->count : 1, basis, physicalMemoryBytes());
   const std::vector<std::int64_t> toBake = bricksToBake(grid, shard);
-  const ProbeRows rows = shard ? ProbeRows(grid, toBake) : ProbeRows();
-  const std::int64_t probesHeld = rows.count(grid);
-  const auto start = std::chrono::steady_clock::now();
-  const ProbeBaker probeBaker(scene, tracer, basis, settings, kRotations);
-  const auto operatorsBuilt = std::chrono::steady_clock::now();
-  Volume volume = emptyVolume(grid, rows, basis, probeBaker);
-  const std::vector<Eigen::Vector3f> testDirections = validityDirections(ValidityOptions{});
-
-  const Eigen::Vector3i bricks = grid.brickCounts();
-  const int brickCount = int(toBake.size());
-  std::vector<RayCounts> brickRays(brickCount);
-  std::vector<RoundTally> brickTallies(brickCount);
+  const BrickBaker baker(scene, tracer, basis, settings);
+  Volume volume = baker.emptyVolume(grid, shard ? ProbeRows(grid, toBake) : ProbeRows());
+  if (stats) *stats = BakeStats{};
   std::atomic<std::int64_t> bricksDone{0};
-  tbb::parallel_for(tbb::blocked_range<int>(0, brickCount, 1), [&](const tbb::blocked_range<int>& range) {
-    std::vector<float> coefficients, visibility;
-    for (int n = range.begin(); n < range.end(); ++n) {
-      const std::int64_t b = toBake[n];
-      const Eigen::Vector3i brick(int(b % bricks.x()), int(b / bricks.x() % bricks.y()),
-                                  int(b / (std::int64_t(bricks.x()) * bricks.y())));
-      bakeBrick(tracer, grid, settings, probeBaker, testDirections, brick, volume, brickRays[n], brickTallies[n],
-                coefficients, visibility);
-      if (progress) progress(++bricksDone, brickCount);
-    }
+  const std::int64_t brickCount = std::int64_t(toBake.size());
+  baker.bake(volume, toBake, 0, stats, [&] {
+    const std::int64_t done = ++bricksDone;
+    if (progress) progress(done, brickCount);
   });
   volume.shard = shard;
   if (!shard) {
     fillInvalidProbes(grid, volume.states, volume.coefficientsPerProbe, volume.coefficients);
     fillInvalidProbes(grid, volume.states, volume.visibilityPerProbe, volume.visibility);
   }
-  requireFinite(volume);
-
-  if (stats) {
-    stats->probes = probesHeld;
-    stats->bricks = brickCount;
-    stats->raysPerProbe = settings.rays;
-    stats->rays = RayCounts{};
-    for (const RayCounts& c : brickRays) stats->rays += c;  // in brick order: the same sums every run
-    for (const RoundTally& t : brickTallies) stats->lattice += t;
-    for (ProbeState s : volume.states) {
-      stats->validProbes += s == ProbeState::Valid;
-      stats->relocatedProbes += s == ProbeState::Relocated;
-    }
-    stats->invalidProbes = stats->probes - stats->validProbes - stats->relocatedProbes;
-    stats->conditionNumber = probeBaker.conditionNumber();
-    stats->shOrder = probeBaker.shOrder();
-    stats->projectionSeconds = probeBaker.projectionSeconds();
-    stats->operatorSeconds = std::chrono::duration<double>(operatorsBuilt - start).count();
-    stats->traceSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - operatorsBuilt).count();
-  }
+  requireFiniteBake(volume);
+  baker.finishStats({&volume}, stats);
   return volume;
 }
 

@@ -55,22 +55,52 @@ nlohmann::json shardJson(const BakeJob& job) {
           {"bricks", shardBricks(job.grid(), *shard).size()}, {"bricks_in_grid", job.grid().brickCount()}};
 }
 
+nlohmann::json placementJson(const BakeJob& job) {
+  nlohmann::json levels = nlohmann::json::array();
+  const AdaptivePlacement* p = job.placement();
+  const int count = p ? p->levels() : 1;
+  for (int level = 0; level < count; ++level) {
+    const ProbeGrid& g = p ? p->grids[std::size_t(level)] : job.grid();
+    levels.push_back({{"level", level},
+                      {"dims", {g.dims.x(), g.dims.y(), g.dims.z()}},
+                      {"origin", {g.origin.x(), g.origin.y(), g.origin.z()}},
+                      {"spacing", g.spacing},
+                      {"bricks", p ? std::int64_t(p->bricks[std::size_t(level)].size()) : g.brickCount()},
+                      {"probes", p ? p->probes(level) : g.probeCount()}});
+  }
+  return {{"mode", job.request().placement},
+          {"margin_cells", p ? nlohmann::json(p->marginCells) : nlohmann::json(nullptr)},
+          {"deep_inside_bricks", p ? p->deepInsideBricks : 0},
+          {"levels", levels},
+          {"uniform_finest_probes", uniformFinestProbes(job)}};
+}
+
+nlohmann::json gridJson(const BakeJob& job) {
+  const ProbeGrid& grid = job.grid();
+  return {{"dims", {grid.dims.x(), grid.dims.y(), grid.dims.z()}},
+          {"origin", {grid.origin.x(), grid.origin.y(), grid.origin.z()}},
+          {"spacing", grid.spacing},
+          {"spacing_chosen", job.spacingReason()}};
+}
+
+nlohmann::json dryRunJson(const BakeJob& job) {
+  return {{"basis", job.basis().name()}, {"grid", gridJson(job)}, {"placement", placementJson(job)},
+          {"plan", planJson(job.plan())}};
+}
+
 nlohmann::json bakeJson(const BakeReport& r) {
   const BakeJob& job = r.job;
   const BakeStats& stats = r.stats;
-  const ProbeGrid& grid = job.grid();
   const ConvergenceSettings& convergence = job.settings().convergence;
   return {
       {"output", r.output.path},
       {"format", volumeFormatName(r.output.format)},
       {"basis", job.basis().name()},
-      {"grid", {{"dims", {grid.dims.x(), grid.dims.y(), grid.dims.z()}},
-                {"origin", {grid.origin.x(), grid.origin.y(), grid.origin.z()}},
-                {"spacing", grid.spacing},
-                {"spacing_chosen", job.spacingReason()}}},
+      {"grid", gridJson(job)},
       {"probes", stats.probes},
       {"probe_states", {{"valid", stats.validProbes}, {"relocated", stats.relocatedProbes},
-                        {"invalid", stats.invalidProbes}}},
+                        {"invalid", stats.invalidProbes}, {"interpolated", stats.interpolatedProbes}}},
+      {"placement", placementJson(job)},
       {"bricks", stats.bricks},
       {"rays_per_probe", std::llround(r.meanRays())},
       {"sampling", {{"quality", qualityName(job.request())},
@@ -110,13 +140,18 @@ void printBakeSummary(const BakeReport& r) {
                         job.rayLimit(), stats.lattice.mostRays)
           : std::to_string(stats.raysPerProbe);
   std::cerr << fmt::format(
-      "baked {} probes ({} × {} × {}, spacing {:.4g} m; {} relocated, {} invalid{}) × {} rays, {} "
+      "baked {} probes ({}; {} relocated, {} invalid{}) × {} rays, {} "
       "bounce(s), in {:.2f} s ({:.1f} Mrays/s; operators {:.2f} s; load {:.2f} s, BVH {:.2f} s, write {:.2f} "
       "s; peak memory {:.0f} MiB)\n"
       "rays: {} probe, {} bounce, {} punctual shadow, {} emitter shadow, {} environment shadow, {} direct "
       "punctual shadow, {} direct view, {} direct-view shadow, {} aimed bounce, {} aimed-bounce shadow, {} validity; "
       "{} in all\n",
-      stats.probes, grid.dims.x(), grid.dims.y(), grid.dims.z(), grid.spacing, stats.relocatedProbes,
+      stats.probes,
+      job.placement() ? fmt::format("{} levels, spacing {:.4g} to {:.4g} m, {} interpolated at level borders",
+                                    job.placement()->levels(), grid.spacing, job.placement()->grids.back().spacing,
+                                    stats.interpolatedProbes)
+                      : fmt::format("{} × {} × {}, spacing {:.4g} m", grid.dims.x(), grid.dims.y(), grid.dims.z(), grid.spacing),
+      stats.relocatedProbes,
       stats.invalidProbes, job.request().shard ? ", filled when the parts are merged" : " and filled", raysText, job.settings().transport.bounces, stats.traceSeconds, r.mraysPerSecond(),
       stats.operatorSeconds, job.loadSeconds(), job.bvhSeconds(), r.writeSeconds, peakMemoryBytes() / 1048576.0,
       c.probe, c.bounce, c.punctualShadow, c.emitterShadow, c.environmentShadow, c.directPunctualShadow, c.directView,
@@ -167,11 +202,15 @@ int runBakeCommand(int argc, char** argv) {
   app.add_option("--precision", precision, "EXR slices: half or float")->capture_default_str();
   app.add_flag("--json", json, "print the summary as JSON on stdout");
   std::string shardText;
-  bool mpi = false;
+  bool mpi = false, dryRun = false;
+  app.add_flag("--dry-run", dryRun,
+               "lay out the grid (and an adaptive bake's levels), print the plan and stop: nothing is traced or "
+               "written; with --json, the plan as JSON");
   auto* shardOption = app.add_option(
       "--shard", shardText,
       "bake only shard K of N (0 <= K < N <= 4096, bricks in Morton order): a part for `baker merge`; parts are "
       "written in float");
+  addPlacementOptions(app, options.request);
   app.add_flag("--mpi", mpi,
                "under mpirun: rank r bakes shard r of the ranks with its share of the cores, rank 0 writes the "
                "whole volume (docs/SCALING.md)")
@@ -179,6 +218,7 @@ int runBakeCommand(int argc, char** argv) {
 
   return runGuarded("baker", app, argc, argv, [&]() {
     if (!shardText.empty()) options.request.shard = requireShard(shardText);
+    requirePlacementOptions(app, options.request);
     const VolumeOutput output = options.request.shard ? partOutput(options.request, outPath, format)
                                                       : volumeOutput(options.request.scenePath, outPath, format, precision);
     // EXR slices are written through the image module: a missing one fails now, not after the bake.
@@ -186,6 +226,7 @@ int runBakeCommand(int argc, char** argv) {
     if (!app.count("--basis") && !preferredBasis(output).empty()) options.request.basis = preferredBasis(output);
     const std::unique_ptr<Basis> basis = makeBasis(options.request.basis);
     requireWritable(output, *basis);
+    requireLevelsWritable(output, options.request.adaptive() ? options.request.levels : 1);
     const bool nonNegativeForFormat = !options.request.nonNegative && prefersNonNegativeFit(output, *basis);
     if (nonNegativeForFormat) options.request.nonNegative = true;
     if (mpi) return bakeOverMpi(app, options, output, {quiet, json, nonNegativeForFormat});
@@ -193,17 +234,21 @@ int runBakeCommand(int argc, char** argv) {
     std::ostringstream silenced;
     const std::unique_ptr<BakeJob> job = prepareBake(app, options, quiet ? silenced : std::cerr);
     printExportPlan(quiet ? silenced : std::cerr, output, job->basis(), nonNegativeForFormat);
+    if (dryRun) {
+      if (json) std::cout << dryRunJson(*job).dump(2) << "\n";
+      return 0;
+    }
     BakeStats stats;
     BakeReport report{*job, stats, output, {}};
     auto stage = std::chrono::steady_clock::now();
-    Volume volume;
+    AdaptiveVolume volume;
     {
       ProgressBar bar("baking", !quiet);
-      volume = job->bake(&stats, [&](std::int64_t done, std::int64_t total) { bar.update(done, total); });
+      volume = job->bakeLevels(&stats, [&](std::int64_t done, std::int64_t total) { bar.update(done, total); });
     }
     report.bakeSeconds = secondsSince(stage);
     stage = std::chrono::steady_clock::now();
-    report.engineExport = writeVolume(volume, job->basis(), output);
+    report.engineExport = writeLevels(volume, job->basis(), output);
     for (const std::string& warning : report.engineExport.warnings)
       std::cerr << fmt::format("baker: warning: {}: {}\n", report.engineExport.engine, warning);
     if (report.engineExport.clampedValues > 0)

@@ -46,6 +46,24 @@ void addBakeOptions(CLI::App& app, BakeOptions& o, bool listed) {
   addSceneFlags(app, r.scene);
 }
 
+void addPlacementOptions(CLI::App& app, BakeRequest& request) {
+  app.add_option("--placement", request.placement,
+                 "uniform: one grid at --spacing; adaptive: --levels nested levels, the finest at --spacing, "
+                 "finer bricks only near geometry (docs/ADAPTIVE.md); written as .vdb")
+      ->capture_default_str();
+  app.add_option("--levels", request.levels, "adaptive placement: 1 to 4 levels, spacing ×3 per level")
+      ->capture_default_str();
+  app.add_option("--margin", request.marginCells,
+                 "adaptive placement: a brick is refined when geometry lies within it or this many of its cells "
+                 "around it (0 to 4)")
+      ->capture_default_str();
+}
+
+void requirePlacementOptions(const CLI::App& app, const BakeRequest& request) {
+  for (const char* flag : {"--levels", "--margin"})
+    if (app.count(flag) && !request.adaptive()) throw SettingError(flag + 2, "applies to --placement adaptive only");
+}
+
 BakeRequest bakeRequest(const CLI::App& app, const BakeOptions& options) {
   BakeRequest request = options.request;
   if (app.count("--spacing")) request.spacing = options.spacing;
@@ -63,8 +81,34 @@ std::unique_ptr<BakeJob> prepareBake(const CLI::App& app, const BakeOptions& opt
                      g.dims.y(), g.dims.z(), g.probeCount(), g.spacing, job->spacingReason(),
                      bakeMemoryBytes(g, shards, job->basis()) / double(1ull << 30),
                      shards > 1 ? " per shard (the merge, or rank 0 under MPI, holds the whole volume)" : "");
+  if (job->placement()) printPlacement(log, *job);
   printPlan(log, job->plan());
   return job;
+}
+
+double uniformFinestProbes(const BakeJob& job) {
+  const AdaptivePlacement* placement = job.placement();
+  return probesPerAxis(job.scene().bounds, placement ? placement->grids.back().spacing : job.grid().spacing).prod();
+}
+
+void printPlacement(std::ostream& log, const BakeJob& job) {
+  const AdaptivePlacement& p = *job.placement();
+  log << fmt::format("adaptive placement: {} levels, spacing ×{} per level, bricks refined within {} cell(s) of "
+                     "geometry\n",
+                     p.levels(), kLevelRatio, p.marginCells);
+  for (int level = 0; level < p.levels(); ++level) {
+    const ProbeGrid& g = p.grids[std::size_t(level)];
+    log << fmt::format("  level {}: spacing {:.4g} m, {} of {} bricks, {} probes{}\n", level, g.spacing,
+                       p.bricks[std::size_t(level)].size(), g.brickCount(), p.probes(level),
+                       level == 0 && p.deepInsideBricks > 0
+                           ? fmt::format(" ({} bricks deep inside closed geometry not placed)", p.deepInsideBricks)
+                           : "");
+  }
+  const double uniform = uniformFinestProbes(job);
+  log << fmt::format("  in all {} probes, {:.3g} GiB at the peak; a uniform grid at {:.4g} m would have {:.4g} probes "
+                     "({:.3g}× as many)\n",
+                     p.probes(), volumeMemoryBytes(double(p.probes()), job.basis()) / double(1ull << 30),
+                     p.grids.back().spacing, uniform, uniform / double(std::max<std::int64_t>(1, p.probes())));
 }
 
 void printPlan(std::ostream& out, const std::vector<PlannedEffect>& plan) {

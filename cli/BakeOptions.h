@@ -24,6 +24,16 @@ struct BakeOptions {
 // --basis, --rays and --bounces.
 void addBakeOptions(CLI::App& app, BakeOptions& options, bool listed = false);
 
+// Probes a uniform grid at the bake's finest spacing would have: what adaptive placement saves.
+double uniformFinestProbes(const BakeJob& job);
+// An adaptive bake's levels: spacing, bricks and probes per level, against a uniform grid.
+void printPlacement(std::ostream& log, const BakeJob& job);
+
+// --placement, --levels, --margin: the bake command's own (a list of bakes or single probes has
+// no levels); the last two are refused without adaptive placement.
+void addPlacementOptions(CLI::App& app, BakeRequest& request);
+void requirePlacementOptions(const CLI::App& app, const BakeRequest& request);
+
 // The request the parsed flags describe.
 BakeRequest bakeRequest(const CLI::App& app, const BakeOptions& options);
 

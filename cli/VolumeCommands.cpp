@@ -25,6 +25,24 @@ std::uintmax_t bytesOf(const std::string& path) {
   return total;
 }
 
+// Per level: its grid and what it holds; adds each probe's state to `counts`.
+nlohmann::json levelsJson(const AdaptiveVolume& volume, std::int64_t (&counts)[kProbeStateCount]) {
+  nlohmann::json levels = nlohmann::json::array();
+  for (std::size_t k = 0; k < volume.levels.size(); ++k) {
+    const Volume& level = volume.levels[k];
+    for (ProbeState s : level.states) ++counts[int(s)];
+    if (level.states.empty()) counts[int(ProbeState::Valid)] += level.grid.probeCount();
+    const ProbeGrid& g = level.grid;
+    levels.push_back({{"level", k},
+                      {"dims", {g.dims.x(), g.dims.y(), g.dims.z()}},
+                      {"origin", {g.origin.x(), g.origin.y(), g.origin.z()}},
+                      {"spacing", g.spacing},
+                      {"bricks", level.rows.holdsEveryProbe() ? g.brickCount() : std::int64_t(level.rows.bricks().size())},
+                      {"probes", level.rows.count(g)}});
+  }
+  return levels;
+}
+
 }  // namespace
 
 int runSampleCommand(int argc, char** argv) {
@@ -40,9 +58,16 @@ int runSampleCommand(int argc, char** argv) {
     Eigen::Vector3d normal = parseTriple("--normal", normalText);
     if (!(normal.norm() > 0.0)) throw InputError("--normal must not be zero");
     normal.normalize();
-    const Volume volume = readVolume(path);
-    const std::unique_ptr<Basis> basis = basisOf(volume);
-    const VolumeSample s = sampleVolume(volume, position);
+    const AdaptiveVolume levels = readLevels(path);
+    const std::unique_ptr<Basis> basis = basisOf(levels.coarsest());
+    // The finest level whose probes around the position are all held, as an engine picks it.
+    const LevelChoice choice = finestLevelAt(levels.levels, int(levels.levels.size()), position);
+    const Volume& volume = levels.levels[std::size_t(choice.level)];
+    VolumeSample s;
+    s.gridPosition = choice.interpolation.gridPosition;
+    s.coefficients.resize(std::size_t(volume.coefficientsPerProbe));
+    s.visibility.resize(std::size_t(volume.visibilityPerProbe));
+    choice.interpolation.apply(volume, !choice.interpolation.complete(), s.coefficients.data(), s.visibility.data());
     const Eigen::Vector3f e = basis->reconstruct(s.coefficients.data(), normal);
     const bool hasVisibility = volume.visibilityPerProbe > 0;
     const double sky = hasVisibility ? reconstructVisibility(*basis, s.visibility.data(), normal) : 0.0;
@@ -52,6 +77,8 @@ int runSampleCommand(int argc, char** argv) {
                           {"position", {position.x(), position.y(), position.z()}},
                           {"normal", {normal.x(), normal.y(), normal.z()}},
                           {"grid_position", {s.gridPosition.x(), s.gridPosition.y(), s.gridPosition.z()}},
+                          {"level", choice.level},
+                          {"level_spacing", volume.grid.spacing},
                           {"irradiance", {e.x(), e.y(), e.z()}},
                           {"coefficients", s.coefficients}};
       j["sky_visibility"] = hasVisibility ? nlohmann::json(sky) : nlohmann::json(nullptr);
@@ -61,6 +88,9 @@ int runSampleCommand(int argc, char** argv) {
                                "{:.4f}); probe coordinates ({:.3f}, {:.3f}, {:.3f})\n",
                                e.x(), e.y(), e.z(), position.x(), position.y(), position.z(), normal.x(), normal.y(),
                                normal.z(), s.gridPosition.x(), s.gridPosition.y(), s.gridPosition.z());
+      if (levels.levels.size() > 1)
+        std::cout << fmt::format("level {} of {} (spacing {:.4g} m)\n", choice.level, levels.levels.size(),
+                                 volume.grid.spacing);
       if (hasVisibility) std::cout << fmt::format("sky visibility {:.4f}\n", sky);
     }
     return 0;
@@ -74,23 +104,24 @@ int runInspectCommand(int argc, char** argv) {
   app.add_option("volume", path, "volume: .vdb, or a directory of EXR slices, a Bevy or a three.js export")->required();
   app.add_flag("--json", json, "print the description as JSON on stdout");
   return runGuarded("baker inspect", app, argc, argv, [&]() {
-    const Volume v = readVolume(path);
+    const AdaptiveVolume volume = readLevels(path);
+    const Volume& v = volume.coarsest();
     const std::unique_ptr<Basis> basis = basisOf(v);
     const ProbeGrid& g = v.grid;
     nlohmann::json grids = nlohmann::json::array();
     for (const VolumeGrid& grid : volumeGrids(*basis, v.visibilityPerProbe, !v.states.empty())) {
       float lo = std::numeric_limits<float>::infinity(), hi = -lo;
-      for (std::int64_t p = 0; p < g.probeCount(); ++p)
-        for (int c = 0; c < grid.components; ++c) {
-          const float value = gridValue(v, grid, c, p);
-          lo = std::min(lo, value);
-          hi = std::max(hi, value);
-        }
+      for (const Volume& level : volume.levels)
+        for (std::int64_t row = 0; row < level.rows.count(level.grid); ++row)
+          for (int c = 0; c < grid.components; ++c) {
+            const float value = gridValue(level, grid, c, level.rows.probeAt(level.grid, row));
+            lo = std::min(lo, value);
+            hi = std::max(hi, value);
+          }
       grids.push_back({{"name", grid.name}, {"components", grid.components}, {"min", lo}, {"max", hi}});
     }
-    std::int64_t counts[3] = {0, 0, 0};
-    for (ProbeState s : v.states) ++counts[int(s)];
-    if (v.states.empty()) counts[int(ProbeState::Valid)] = g.probeCount();
+    std::int64_t counts[kProbeStateCount] = {};
+    const nlohmann::json levels = levelsJson(volume, counts);
     const std::uintmax_t bytes = bytesOf(path);
     if (json) {
       const nlohmann::json j = {
@@ -104,7 +135,10 @@ int runInspectCommand(int argc, char** argv) {
           {"probes", g.probeCount()},
           {"coefficients_per_probe", v.coefficientsPerProbe},
           {"visibility_per_probe", v.visibilityPerProbe},
-          {"probe_states", {{"valid", counts[1]}, {"relocated", counts[2]}, {"invalid", counts[0]}}},
+          {"probe_states", {{"valid", counts[1]}, {"relocated", counts[2]}, {"invalid", counts[0]},
+                            {"interpolated", counts[3]}}},
+          {"levels", levels},
+          {"margin_cells", volume.levels.size() > 1 ? nlohmann::json(volume.marginCells) : nlohmann::json(nullptr)},
           {"grids", grids},
           {"settings", v.settings},
           {"shard", v.shard ? nlohmann::json{{"index", v.shard->index}, {"count", v.shard->count},
@@ -120,8 +154,17 @@ int runInspectCommand(int argc, char** argv) {
       std::cout << fmt::format("part: shard {} of a bake ({} of {} bricks); probes outside it count as invalid here, "
                                "and invalid probes are filled when the parts are merged (baker merge)\n",
                                shardName(*v.shard), shardBricks(g, *v.shard).size(), g.brickCount());
-    std::cout << fmt::format("probes: {} valid, {} relocated, {} invalid{}\n", counts[1], counts[2], counts[0],
-                             v.shard ? "" : " (filled from neighbours)");
+    if (volume.levels.size() > 1) {
+      std::cout << fmt::format("adaptive: {} levels, spacing ×{} per level, refined within {} cell(s) of geometry\n",
+                               volume.levels.size(), kLevelRatio, volume.marginCells);
+      for (const nlohmann::json& level : levels)
+        std::cout << fmt::format("  level {}: spacing {:.6g}, {} bricks, {} probes\n", level["level"].get<int>(),
+                                 level["spacing"].get<double>(), level["bricks"].get<std::int64_t>(),
+                                 level["probes"].get<std::int64_t>());
+    }
+    std::cout << fmt::format("probes: {} valid, {} relocated, {} invalid{}{}\n", counts[1], counts[2], counts[0],
+                             v.shard ? "" : " (filled from neighbours)",
+                             counts[3] > 0 ? fmt::format(", {} interpolated from the coarser level", counts[3]) : "");
     for (const nlohmann::json& grid : grids)
       std::cout << fmt::format("  {:<16} {}  [{:.6g}, {:.6g}]\n", grid["name"].get<std::string>(),
                                grid["components"].get<int>() == 3 ? "vec3 " : "float", grid["min"].get<float>(),

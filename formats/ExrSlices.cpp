@@ -127,7 +127,7 @@ void writeExrSlices(const Volume& volume, const Basis& basis, const std::string&
     for (int j = 0; j < g.dims.y(); ++j)
       for (int i = 0; i < g.dims.x(); ++i) {
         const std::int64_t p = g.linearIndex(i, j, k);
-        const bool keep = stored[brickOf(g, i, j, k)];
+        const bool keep = stored[g.brickOf(i, j, k)];
         for (const auto& [grid, c] : channels)
           pixels[n++] = keep ? float(gridValue(volume, *grid, c, p) / (scaled(*grid) ? scale : 1.0)) : 0.0f;
       }
@@ -215,8 +215,8 @@ void readSlice(const std::filesystem::path& dir, const Manifest& manifest, int k
         const auto& [grid, c] = target;
         float value = px[channel];
         if (grid->kind == VolumeGrid::Kind::ProbeState) {
-          if (!(value == 0.0f || value == 1.0f || value == 2.0f))
-            throw InputError(fmt::format("{}: probe_state at ({}, {}) is {}; states are 0, 1 or 2", slicePath, i, j, value));
+          if (!(value == 0.0f || value == 1.0f || value == 2.0f || value == 3.0f))
+            throw InputError(fmt::format("{}: probe_state at ({}, {}) is {}; states are 0, 1, 2 or 3", slicePath, i, j, value));
         } else if (scaled(*grid)) {
           value = float(double(value) * scale);
         }

@@ -123,7 +123,7 @@ EngineExport writeThreeJsProbeGrid(const Volume& volume, const Basis& basis, con
     for (int j = 0; j < g.dims.y(); ++j)
       for (int i = 0; i < g.dims.x(); ++i) {
         // Bricks without a valid probe read as zeros in every format (they are not stored).
-        if (!stored[brickOf(g, i, j, k)]) continue;
+        if (!stored[g.brickOf(i, j, k)]) continue;
         const std::int64_t p = g.linearIndex(i, j, k);
         radianceOf(volume, basis, p, &radiance[p * kValuesPerProbe]);
         for (int c = 0; c < kValuesPerProbe; ++c) largest = std::max(largest, std::abs(radiance[p * kValuesPerProbe + c]));

@@ -3,12 +3,16 @@
 #include <fmt/format.h>
 #include <openvdb/openvdb.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "basis/BasisRegistry.h"
 #include "common/Error.h"
 #include "formats/VdbChecksum.h"
 #include "formats/VolumeHeader.h"
 #include "formats/VolumeLayout.h"
 #include "formats/VolumeMetadata.h"
+#include "volume/LevelGrids.h"
 
 namespace baker {
 namespace {
@@ -18,6 +22,16 @@ T required(const openvdb::MetaMap& meta, const std::string& key, const std::stri
   auto value = meta.getMetadata<openvdb::TypedMetadata<T>>(key);
   if (!value) throw InputError(fmt::format("{}: metadata '{}' is missing or has the wrong type", path, key));
   return value->value();
+}
+
+ProbeGrid levelGrid(const openvdb::MetaMap& meta, const std::string& key, const std::string& path) {
+  const openvdb::Vec3i dims = required<openvdb::Vec3i>(meta, key + "dims", path);
+  const openvdb::Vec3d origin = required<openvdb::Vec3d>(meta, key + "origin", path);
+  ProbeGrid grid;
+  grid.dims = Eigen::Vector3i(dims.x(), dims.y(), dims.z());
+  grid.origin = Eigen::Vector3d(origin.x(), origin.y(), origin.z());
+  grid.spacing = required<double>(meta, key + "spacing", path);
+  return grid;
 }
 
 // A voxel of a part read as its own bricks only that lies in another shard's brick.
@@ -42,6 +56,84 @@ void readVoxels(openvdb::io::File& file, const std::string& name, const ProbeGri
   }
 }
 
+// The grids of one level (named `prefix` + the layout's name) into `volume`, sized already.
+void readLevelGrids(openvdb::io::File& file, const std::string& path, const std::string& prefix, bool hasProbeStates,
+                    Volume& volume) {
+  const std::unique_ptr<Basis> basis = makeBasis(volume.basisName);
+  const ProbeGrid& g = volume.grid;
+  for (const VolumeGrid& spec : volumeGrids(*basis, volume.visibilityPerProbe, hasProbeStates)) {
+    const std::string name = prefix + spec.name;
+    if (spec.kind == VolumeGrid::Kind::ProbeState)
+      readVoxels<openvdb::Int32Grid>(file, name, g, path, [&](std::int64_t p, int state) {
+        if (state < 0 || state >= kProbeStateCount)
+          throw InputError(fmt::format("{}: grid '{}' holds {}; states are 0, 1, 2 or 3", path, name, state));
+        const std::int64_t row = volume.rowOf(p);
+        if (row < 0) throw voxelOutsideShard(path, name, volume, p);
+        volume.states[row] = ProbeState(state);
+      });
+    else if (spec.components == 3)
+      readVoxels<openvdb::Vec3SGrid>(file, name, g, path, [&](std::int64_t p, const openvdb::Vec3s& v) {
+        for (int c = 0; c < 3; ++c)
+          if (!setGridValue(volume, spec, c, p, v[c])) throw voxelOutsideShard(path, name, volume, p);
+      });
+    else
+      readVoxels<openvdb::FloatGrid>(file, name, g, path, [&](std::int64_t p, float v) {
+        if (!setGridValue(volume, spec, 0, p, v)) throw voxelOutsideShard(path, name, volume, p);
+      });
+  }
+}
+
+// The header every level shares: basis, counts, level 0's grid and the text metadata.
+VolumeHeader vdbHeader(openvdb::io::File& file, const openvdb::MetaMap& meta, const std::string& path) {
+  VolumeHeader header;
+  header.basisName = required<std::string>(meta, "baker.basis", path);
+  header.coefficientsPerProbe = required<int>(meta, "baker.coefficients_per_probe", path);
+  auto visibility = meta.getMetadata<openvdb::Int32Metadata>("baker.visibility_per_probe");
+  header.visibilityPerProbe = visibility ? visibility->value() : 0;
+  header.grid = levelGrid(meta, "baker.", path);
+  header.hasProbeStates = file.hasGrid("probe_state");
+  for (auto it = meta.beginMeta(); it != meta.endMeta(); ++it) header.text.push_back({it->first, it->second->str()});
+  return header;
+}
+
+// Levels the file holds: 1 without the key.
+int levelCount(const openvdb::MetaMap& meta, const std::string& path) {
+  if (!meta.getMetadata<openvdb::Int32Metadata>(kLevelsKey)) return 1;
+  const int levels = required<int>(meta, kLevelsKey, path);
+  if (levels < 1 || levels > kMaxLevels)
+    throw InputError(fmt::format("{}: {} is {}; a volume has 1 to {} levels", path, kLevelsKey, levels, kMaxLevels));
+  return levels;
+}
+
+// The bricks of a level's grid that hold a leaf of its probe_state grid, by increasing index.
+std::vector<std::int64_t> bricksInFile(openvdb::io::File& file, const std::string& name, const ProbeGrid& g,
+                                       const std::string& path) {
+  if (!file.hasGrid(name)) throw InputError(fmt::format("{}: grid '{}' is missing", path, name));
+  auto grid = openvdb::gridPtrCast<openvdb::Int32Grid>(file.readGrid(name));
+  if (!grid) throw InputError(fmt::format("{}: grid '{}' has the wrong value type", path, name));
+  std::vector<std::int64_t> bricks;
+  for (auto leaf = grid->tree().cbeginLeaf(); leaf; ++leaf) {
+    const openvdb::Coord c = leaf->origin();
+    if (c.x() < 0 || c.y() < 0 || c.z() < 0 || c.x() >= g.dims.x() || c.y() >= g.dims.y() || c.z() >= g.dims.z())
+      throw InputError(fmt::format("{}: grid '{}' has a brick at ({}, {}, {}), outside the {} × {} × {} probes", path,
+                                   name, c.x(), c.y(), c.z(), g.dims.x(), g.dims.y(), g.dims.z()));
+    bricks.push_back(g.brickOf(c.x(), c.y(), c.z()));
+  }
+  std::sort(bricks.begin(), bricks.end());
+  return bricks;
+}
+
+// Level `level`'s grid from the metadata, checked to lie on the lattice LevelGrids.h lays out.
+ProbeGrid nestedGrid(const openvdb::MetaMap& meta, int level, const ProbeGrid& parent, const std::string& path) {
+  const std::string key = fmt::format("baker.level{}.", level);
+  const ProbeGrid grid = levelGrid(meta, key, path);
+  if (!nestsIn(grid, parent))
+    throw InputError(fmt::format("{}: {}origin and spacing do not nest in level {} (each level has a third of the "
+                                 "spacing of the one above, its probes on the same lattice)",
+                                 path, key, level - 1));
+  return grid;
+}
+
 }  // namespace
 
 Volume readVdb(const std::string& path, PartReading parts) {
@@ -51,43 +143,48 @@ Volume readVdb(const std::string& path, PartReading parts) {
     openvdb::io::File file(path);
     file.open();
     openvdb::MetaMap::Ptr meta = file.getMetadata();
-    VolumeHeader header;
-    header.basisName = required<std::string>(*meta, "baker.basis", path);
-    header.coefficientsPerProbe = required<int>(*meta, "baker.coefficients_per_probe", path);
-    auto visibility = meta->getMetadata<openvdb::Int32Metadata>("baker.visibility_per_probe");
-    header.visibilityPerProbe = visibility ? visibility->value() : 0;
-    const openvdb::Vec3i dims = required<openvdb::Vec3i>(*meta, "baker.dims", path);
-    const openvdb::Vec3d origin = required<openvdb::Vec3d>(*meta, "baker.origin", path);
-    header.grid.dims = Eigen::Vector3i(dims.x(), dims.y(), dims.z());
-    header.grid.origin = Eigen::Vector3d(origin.x(), origin.y(), origin.z());
-    header.grid.spacing = required<double>(*meta, "baker.spacing", path);
-    header.hasProbeStates = file.hasGrid("probe_state");
-    for (auto it = meta->beginMeta(); it != meta->endMeta(); ++it) header.text.push_back({it->first, it->second->str()});
-
+    if (const int levels = levelCount(*meta, path); levels > 1)
+      throw InputError(fmt::format("{}: an adaptive volume of {} levels; this command reads a uniform volume only "
+                                   "(baker sample and baker inspect read levels)",
+                                   path, levels));
+    const VolumeHeader header = vdbHeader(file, *meta, path);
     Volume volume = header.emptyVolume(path, parts);
-    const std::unique_ptr<Basis> basis = makeBasis(volume.basisName);
-    const ProbeGrid& g = volume.grid;
-    for (const VolumeGrid& spec : volumeGrids(*basis, volume.visibilityPerProbe, header.hasProbeStates)) {
-      if (spec.kind == VolumeGrid::Kind::ProbeState)
-        readVoxels<openvdb::Int32Grid>(file, spec.name, g, path, [&](std::int64_t p, int state) {
-          if (state < 0 || state > 2)
-            throw InputError(fmt::format("{}: grid 'probe_state' holds {}; states are 0, 1 or 2", path, state));
-          const std::int64_t row = volume.rowOf(p);
-          if (row < 0) throw voxelOutsideShard(path, spec.name, volume, p);
-          volume.states[row] = ProbeState(state);
-        });
-      else if (spec.components == 3)
-        readVoxels<openvdb::Vec3SGrid>(file, spec.name, g, path, [&](std::int64_t p, const openvdb::Vec3s& v) {
-          for (int c = 0; c < 3; ++c)
-            if (!setGridValue(volume, spec, c, p, v[c])) throw voxelOutsideShard(path, spec.name, volume, p);
-        });
-      else
-        readVoxels<openvdb::FloatGrid>(file, spec.name, g, path, [&](std::int64_t p, float v) {
-          if (!setGridValue(volume, spec, 0, p, v)) throw voxelOutsideShard(path, spec.name, volume, p);
-        });
-    }
+    readLevelGrids(file, path, "", header.hasProbeStates, volume);
     file.close();
     requireFiniteValues(volume, path);
+    return volume;
+  } catch (const openvdb::Exception& e) {
+    throw InputError(fmt::format("{}: not a readable OpenVDB volume: {}", path, e.what()));
+  }
+}
+
+AdaptiveVolume readAdaptiveVdb(const std::string& path) {
+  requireVdbChecksum(path);
+  openvdb::initialize();
+  try {
+    openvdb::io::File file(path);
+    file.open();
+    openvdb::MetaMap::Ptr meta = file.getMetadata();
+    const int levels = levelCount(*meta, path);
+    AdaptiveVolume volume;
+    if (levels == 1) {
+      volume.levels.push_back(readVdb(path));
+      return volume;
+    }
+    volume.marginCells = required<int>(*meta, "baker.margin_cells", path);
+    if (required<int>(*meta, "baker.level_ratio", path) != kLevelRatio)
+      throw InputError(fmt::format("{}: baker.level_ratio is not {}, the only ratio this reader knows", path, kLevelRatio));
+    VolumeHeader header = vdbHeader(file, *meta, path);
+    if (!header.hasProbeStates) throw InputError(fmt::format("{}: grid 'probe_state' is missing", path));
+    for (int level = 0; level < levels; ++level) {
+      if (level > 0) header.grid = nestedGrid(*meta, level, header.grid, path);
+      header.heldBricks = bricksInFile(file, levelGridPrefix(level) + "probe_state", header.grid, path);
+      volume.levels.push_back(header.emptyVolume(path));
+      if (level > 0) volume.levels.back().settings.clear();
+      readLevelGrids(file, path, levelGridPrefix(level), true, volume.levels.back());
+      requireFiniteValues(volume.levels.back(), path);
+    }
+    file.close();
     return volume;
   } catch (const openvdb::Exception& e) {
     throw InputError(fmt::format("{}: not a readable OpenVDB volume: {}", path, e.what()));

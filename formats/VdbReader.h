@@ -2,12 +2,17 @@
 #include <string>
 
 #include "formats/VolumeHeader.h"
+#include "volume/AdaptiveVolume.h"
 #include "volume/Volume.h"
 
 namespace baker {
 
 // Reads an OpenVDB volume written by writeVdb. InputError naming the file and what is missing
 // or inconsistent. Use readVolume, which picks the reader from the path.
+// An adaptive volume is refused (InputError): it has levels (readAdaptiveVdb).
 Volume readVdb(const std::string& path, PartReading parts = PartReading::EveryProbe);
+
+// Every level of a volume written by writeAdaptiveVdb, or the one level of a uniform volume.
+AdaptiveVolume readAdaptiveVdb(const std::string& path);
 
 }  // namespace baker

@@ -17,6 +17,7 @@
 #include "formats/AtomicFile.h"
 #include "formats/VdbChecksum.h"
 #include "formats/VdbUuid.h"
+#include "formats/VolumeHeader.h"
 #include "formats/VolumeLayout.h"
 #include "formats/VolumeMetadata.h"
 #include "volume/ProbeGrid.h"
@@ -38,7 +39,7 @@ typename GridType::Ptr sparseGrid(const Volume& v, const std::vector<bool>& stor
     for (int bj = 0; bj < bricks.y(); ++bj)
       for (int bi = 0; bi < bricks.x(); ++bi) {
         const openvdb::Coord origin(bi * kBrickSize, bj * kBrickSize, bk * kBrickSize);
-        if (!stored[brickOf(g, origin.x(), origin.y(), origin.z())]) continue;
+        if (!stored[g.brickOf(origin.x(), origin.y(), origin.z())]) continue;
         auto leaf = std::make_unique<LeafType>(origin, typename GridType::ValueType(0), false);
         for (int k = origin.z(); k < std::min(origin.z() + kBrickSize, g.dims.z()); ++k)
           for (int j = origin.y(); j < std::min(origin.y() + kBrickSize, g.dims.y()); ++j)
@@ -49,14 +50,17 @@ typename GridType::Ptr sparseGrid(const Volume& v, const std::vector<bool>& stor
   return grid;
 }
 
+openvdb::Vec3i vec3i(const Eigen::Vector3i& v) { return {v.x(), v.y(), v.z()}; }
+openvdb::Vec3d vec3d(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
 openvdb::MetaMap fileMetadata(const Volume& v, const Basis& basis) {
   openvdb::MetaMap meta;
   for (const auto& [key, value] : describingMetadata(v, basis)) meta.insertMeta(key, openvdb::StringMetadata(value));
   const ProbeGrid& g = v.grid;
   meta.insertMeta("baker.coefficients_per_probe", openvdb::Int32Metadata(v.coefficientsPerProbe));
   meta.insertMeta("baker.visibility_per_probe", openvdb::Int32Metadata(v.visibilityPerProbe));
-  meta.insertMeta("baker.dims", openvdb::Vec3IMetadata(openvdb::Vec3i(g.dims.x(), g.dims.y(), g.dims.z())));
-  meta.insertMeta("baker.origin", openvdb::Vec3DMetadata(openvdb::Vec3d(g.origin.x(), g.origin.y(), g.origin.z())));
+  meta.insertMeta("baker.dims", openvdb::Vec3IMetadata(vec3i(g.dims)));
+  meta.insertMeta("baker.origin", openvdb::Vec3DMetadata(vec3d(g.origin)));
   meta.insertMeta("baker.spacing", openvdb::DoubleMetadata(g.spacing));
   meta.insertMeta(kVdbChecksumKey, openvdb::StringMetadata(kVdbChecksumPlaceholder));
   return meta;
@@ -97,29 +101,36 @@ class GridByGridArchive : public openvdb::io::Archive {
   }
 };
 
-}  // namespace
+// One level's grids: named `prefix` + the layout's name, with the level's own transform.
+struct LevelGrids {
+  const Volume* volume;
+  std::string prefix;
+  std::vector<bool> stored;
+};
 
-void writeVdb(const Volume& volume, const Basis& basis, const std::string& path) {
-  requireFiniteVolume(volume);
+void writeLevels(const std::vector<LevelGrids>& levels, const Basis& basis, const openvdb::MetaMap& metadata,
+                 const std::string& path) {
+  for (const LevelGrids& level : levels) requireFiniteVolume(*level.volume);
   openvdb::initialize();
-  const ProbeGrid& g = volume.grid;
-  openvdb::math::Transform::Ptr transform = openvdb::math::Transform::createLinearTransform(g.spacing);
-  transform->postTranslate(openvdb::Vec3d(g.origin.x(), g.origin.y(), g.origin.z()));
-  const std::vector<bool> stored = storedBricks(volume);
-  const std::vector<VolumeGrid> specs = volumeGrids(basis, volume.visibilityPerProbe, !volume.states.empty());
+  const Volume& first = *levels.front().volume;
+  const std::vector<VolumeGrid> specs = volumeGrids(basis, first.visibilityPerProbe, !first.states.empty());
   const auto gridAt = [&](std::int32_t index) {
-    const VolumeGrid& spec = specs[std::size_t(index)];
+    const LevelGrids& level = levels[std::size_t(index) / specs.size()];
+    const Volume& volume = *level.volume;
+    const VolumeGrid& spec = specs[std::size_t(index) % specs.size()];
     openvdb::GridBase::Ptr grid;
     if (spec.kind == VolumeGrid::Kind::ProbeState)
-      grid = sparseGrid<openvdb::Int32Grid>(volume, stored, [&](std::int64_t p) { return int(gridValue(volume, spec, 0, p)); });
+      grid = sparseGrid<openvdb::Int32Grid>(volume, level.stored, [&](std::int64_t p) { return int(gridValue(volume, spec, 0, p)); });
     else if (spec.components == 3)
-      grid = sparseGrid<openvdb::Vec3SGrid>(volume, stored, [&](std::int64_t p) {
+      grid = sparseGrid<openvdb::Vec3SGrid>(volume, level.stored, [&](std::int64_t p) {
         return openvdb::Vec3s(gridValue(volume, spec, 0, p), gridValue(volume, spec, 1, p), gridValue(volume, spec, 2, p));
       });
     else
-      grid = sparseGrid<openvdb::FloatGrid>(volume, stored, [&](std::int64_t p) { return gridValue(volume, spec, 0, p); });
-    grid->setName(spec.name);
-    grid->setTransform(transform->copy());
+      grid = sparseGrid<openvdb::FloatGrid>(volume, level.stored, [&](std::int64_t p) { return gridValue(volume, spec, 0, p); });
+    grid->setName(level.prefix + spec.name);
+    openvdb::math::Transform::Ptr transform = openvdb::math::Transform::createLinearTransform(volume.grid.spacing);
+    transform->postTranslate(vec3d(volume.grid.origin));
+    grid->setTransform(transform);
     return grid;
   };
 
@@ -129,7 +140,7 @@ void writeVdb(const Volume& volume, const Basis& basis, const std::string& path)
     std::ofstream file(out.temporaryPath(), std::ios::binary | std::ios::trunc);
     if (!file)
       throw std::runtime_error(fmt::format("{}: cannot create '{}': {}", path, out.temporaryPath(), failureReason()));
-    GridByGridArchive().writeGrids(file, path, fileMetadata(volume, basis), std::int32_t(specs.size()), gridAt);
+    GridByGridArchive().writeGrids(file, path, metadata, std::int32_t(specs.size() * levels.size()), gridAt);
     file.close();
     if (!file) throw std::runtime_error(fmt::format("{}: cannot write OpenVDB file: {}", path, failureReason()));
     deriveVdbUuid(out.temporaryPath());
@@ -138,6 +149,41 @@ void writeVdb(const Volume& volume, const Basis& basis, const std::string& path)
     throw std::runtime_error(fmt::format("{}: cannot write OpenVDB file: {}", path, e.what()));
   }
   out.commit();
+}
+
+// The bricks a level holds: all of them are stored, even one whose probes are all Invalid, so
+// that a reader holds the same bricks (and samples the same levels) as the bake did.
+std::vector<bool> heldBricks(const Volume& level) {
+  std::vector<bool> held(std::size_t(level.grid.brickCount()));
+  for (std::size_t b = 0; b < held.size(); ++b) held[b] = level.rows.holdsBrick(std::int64_t(b));
+  return held;
+}
+
+}  // namespace
+
+void writeVdb(const Volume& volume, const Basis& basis, const std::string& path) {
+  writeLevels({{&volume, "", storedBricks(volume)}}, basis, fileMetadata(volume, basis), path);
+}
+
+void writeAdaptiveVdb(const AdaptiveVolume& volume, const Basis& basis, const std::string& path) {
+  openvdb::MetaMap metadata = fileMetadata(volume.coarsest(), basis);
+  metadata.removeMeta("baker.format_version");
+  metadata.insertMeta("baker.format_version", openvdb::StringMetadata(std::to_string(kLevelsFormatVersion)));
+  metadata.insertMeta(kLevelsKey, openvdb::Int32Metadata(int(volume.levels.size())));
+  metadata.insertMeta("baker.level_ratio", openvdb::Int32Metadata(kLevelRatio));
+  metadata.insertMeta("baker.margin_cells", openvdb::Int32Metadata(volume.marginCells));
+  std::vector<LevelGrids> levels;
+  for (std::size_t k = 0; k < volume.levels.size(); ++k) {
+    const ProbeGrid& g = volume.levels[k].grid;
+    if (k > 0) {
+      const std::string key = fmt::format("baker.level{}.", k);
+      metadata.insertMeta(key + "dims", openvdb::Vec3IMetadata(vec3i(g.dims)));
+      metadata.insertMeta(key + "origin", openvdb::Vec3DMetadata(vec3d(g.origin)));
+      metadata.insertMeta(key + "spacing", openvdb::DoubleMetadata(g.spacing));
+    }
+    levels.push_back({&volume.levels[k], levelGridPrefix(int(k)), heldBricks(volume.levels[k])});
+  }
+  writeLevels(levels, basis, metadata, path);
 }
 
 }  // namespace baker

@@ -2,6 +2,7 @@
 #include <string>
 
 #include "basis/Basis.h"
+#include "volume/AdaptiveVolume.h"
 #include "volume/Volume.h"
 
 namespace baker {
@@ -12,5 +13,12 @@ namespace baker {
 // single valid probe are not stored. Grids are built and written one at a time, and the file
 // is the one OpenVDB's own writer makes of them. Nothing appears at `path` on failure.
 void writeVdb(const Volume& volume, const Basis& basis, const std::string& path);
+
+// Writes every level of an adaptive volume to one OpenVDB file (docs/FORMAT.md, "Levels"):
+// level 0's grids under the names writeVdb uses and its metadata; level k's grids under
+// levelGridPrefix(k) with their own transform, each holding exactly the bricks placed at that
+// level; "baker.levels", "baker.level_ratio", "baker.margin_cells" and per finer level
+// "baker.levelK.dims", ".origin", ".spacing".
+void writeAdaptiveVdb(const AdaptiveVolume& volume, const Basis& basis, const std::string& path);
 
 }  // namespace baker

@@ -10,6 +10,7 @@
 #include "common/Error.h"
 #include "formats/VolumeLayout.h"
 #include "formats/VolumeMetadata.h"
+#include "volume/LevelGrids.h"
 #include "volume/MemoryEstimate.h"
 
 namespace baker {
@@ -26,12 +27,12 @@ void requireKnownFormatVersion(const std::vector<std::pair<std::string, std::str
   const auto [end, error] = std::from_chars(entry->second.data(), entry->second.data() + entry->second.size(), version);
   if (error != std::errc() || end != entry->second.data() + entry->second.size())
     throw InputError(fmt::format("{}: baker.format_version \"{}\" is not a whole number", path, entry->second));
-  if (version > kVolumeFormatVersion)
+  if (version > kLevelsFormatVersion)
     throw InputError(fmt::format("{}: baker.format_version is {}: written by a newer baker (this one reads formats {} to "
-                                 "{})", path, version, kOldestFormatRead, kVolumeFormatVersion));
+                                 "{})", path, version, kOldestFormatRead, kLevelsFormatVersion));
   if (version < kOldestFormatRead)
     throw InputError(fmt::format("{}: baker.format_version is {}: too old to read (formats {} to {}); bake it again",
-                                 path, version, kOldestFormatRead, kVolumeFormatVersion));
+                                 path, version, kOldestFormatRead, kLevelsFormatVersion));
 }
 
 }  // namespace
@@ -46,12 +47,20 @@ Volume VolumeHeader::emptyVolume(const std::string& path, PartReading parts) con
     throw InputError(fmt::format("{}: baker.visibility_per_probe is {}, but {} has {} functions in channel 0", path,
                                  visibilityPerProbe, basisName, basis->functions(0).count()));
   const Eigen::Vector3i& d = grid.dims;
-  if (d.x() <= 0 || d.y() <= 0 || d.z() <= 0 || double(d.x()) * d.y() * d.z() > kMaxProbesRead)
+  const double gridProbes = double(d.x()) * d.y() * d.z();
+  if (d.x() <= 0 || d.y() <= 0 || d.z() <= 0 || gridProbes > (heldBricks ? kMaxLevelGridProbes : kMaxProbesRead))
     throw InputError(fmt::format("{}: baker.dims ({}, {}, {}) is not a valid grid size", path, d.x(), d.y(), d.z()));
+  if (heldBricks)
+    for (const std::int64_t b : *heldBricks)
+      if (b < 0 || b >= grid.brickCount())
+        throw InputError(fmt::format("{}: a brick of a level lies outside its {} × {} × {} probes", path, d.x(), d.y(), d.z()));
+  const double heldProbes = heldBricks ? double(heldBricks->size()) * kBrickSize * kBrickSize * kBrickSize : gridProbes;
+  if (heldProbes > kMaxProbesRead)
+    throw InputError(fmt::format("{}: {:.3g} probes held, beyond the {:.3g} a volume may hold", path, heldProbes, kMaxProbesRead));
   // Half of the bake's estimate: reading holds the volume once (a part read as its own bricks
   // holds less, but the merge reading it holds the whole volume). Checked before allocating, so
   // that a damaged size is refused rather than exhausting memory.
-  const double needed = volumeMemoryBytes(double(d.x()) * d.y() * d.z(), *basis) / 2;
+  const double needed = volumeMemoryBytes(std::min(heldProbes, gridProbes), *basis) / 2;
   if (needed > double(physicalMemoryBytes()))
     throw InputError(fmt::format("{}: baker.dims ({}, {}, {}) in {} would need {:.3g} GiB, more than this machine's "
                                  "memory", path, d.x(), d.y(), d.z(), basisName, needed / double(1ull << 30)));
@@ -66,9 +75,12 @@ Volume VolumeHeader::emptyVolume(const std::string& path, PartReading parts) con
   readSettings(text, volume);
   readShard(text, volume, path);
   if (volume.shard && parts == PartReading::OwnBricks) volume.rows = ProbeRows(grid, shardBricks(grid, *volume.shard));
+  if (heldBricks && std::int64_t(heldBricks->size()) < grid.brickCount()) volume.rows = ProbeRows(grid, *heldBricks);
   prepareForReading(volume, hasProbeStates);
   return volume;
 }
+
+std::string levelGridPrefix(int level) { return level == 0 ? "" : fmt::format("level{}/", level); }
 
 void requireFiniteValues(const Volume& v, const std::string& path) {
   for (std::size_t i = 0; i < v.coefficients.size(); ++i)

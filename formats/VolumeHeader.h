@@ -21,6 +21,11 @@ constexpr double kMaxProbesRead = double(1 << 28);
 // A voxel outside the part's bricks is refused when reading its own bricks only.
 enum class PartReading { EveryProbe, OwnBricks };
 
+// The key an adaptive volume's file gives its number of levels; a file without it has one.
+constexpr const char* kLevelsKey = "baker.levels";
+// "" for level 0, whose grids are named as a uniform volume's; "levelK/" for a finer level K.
+std::string levelGridPrefix(int level);
+
 // What a reader learns from a file before its values: checked once, the same for every format.
 struct VolumeHeader {
   std::string basisName;
@@ -29,6 +34,8 @@ struct VolumeHeader {
   int visibilityPerProbe = 0;
   bool hasProbeStates = false;
   std::vector<std::pair<std::string, std::string>> text;  // every "baker.*" key as text
+  // A level of an adaptive volume holds only these bricks (Volume::rows); none: every probe.
+  std::optional<std::vector<std::int64_t>> heldBricks;
 
   // Checks the header against the basis it names and the limits (InputError naming `path` and
   // the key), then returns a volume with zeroed arrays of the right sizes and the settings.

@@ -70,11 +70,6 @@ void prepareForReading(Volume& v, bool hasProbeStates) {
   v.offsets.assign(hasProbeStates ? n : 0, Eigen::Vector3f::Zero());
 }
 
-std::int64_t brickOf(const ProbeGrid& grid, int i, int j, int k) {
-  const Eigen::Vector3i bricks = grid.brickCounts();
-  return i / kBrickSize + std::int64_t(bricks.x()) * (j / kBrickSize + std::int64_t(bricks.y()) * (k / kBrickSize));
-}
-
 std::vector<bool> storedBricks(const Volume& v) {
   const Eigen::Vector3i bricks = v.grid.brickCounts();
   const std::size_t count = std::size_t(bricks.x()) * bricks.y() * bricks.z();
@@ -84,7 +79,7 @@ std::vector<bool> storedBricks(const Volume& v) {
     for (int j = 0; j < v.grid.dims.y(); ++j)
       for (int i = 0; i < v.grid.dims.x(); ++i)
         if (const std::int64_t row = v.rows.row(v.grid, i, j, k); row >= 0 && v.states[row] != ProbeState::Invalid)
-          stored[brickOf(v.grid, i, j, k)] = true;
+          stored[v.grid.brickOf(i, j, k)] = true;
   return stored;
 }
 

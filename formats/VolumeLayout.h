@@ -44,7 +44,6 @@ void prepareForReading(Volume& volume, bool hasProbeStates);
 // Bricks of 8³ probes (OpenVDB leaves) that hold at least one probe that is not Invalid: sparse
 // formats store only these. All bricks when the volume has no probe states.
 std::vector<bool> storedBricks(const Volume& volume);
-std::int64_t brickOf(const ProbeGrid& grid, int i, int j, int k);
 
 // Writers refuse to store a NaN or an infinity (std::runtime_error: it would be a bug upstream).
 void requireFiniteVolume(const Volume& volume);

@@ -27,6 +27,9 @@ nlohmann::json exportedMetadataJson(const Volume& source, const Basis& sourceBas
 // The metadata format version readers check; raised when the meaning of a key changes.
 // 3: .vdb files carry a checksum of their bytes (formats/VdbChecksum.h).
 constexpr int kVolumeFormatVersion = 3;
+// 4: an adaptive volume's levels (baker.levels); only such files carry it, so that a reader of
+// version 3 refuses them instead of reading their coarsest level as the whole volume.
+constexpr int kLevelsFormatVersion = 4;
 
 // Recovers volume.settings from "baker.setting.*" keys.
 void readSettings(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume);

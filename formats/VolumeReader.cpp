@@ -40,6 +40,13 @@ Volume readVolume(const std::string& path, PartReading parts) {
   return readVdb(path, parts);
 }
 
+AdaptiveVolume readLevels(const std::string& path) {
+  if (volumeFormatOf(path) == "vdb") return readAdaptiveVdb(path);
+  AdaptiveVolume volume;
+  volume.levels.push_back(readVolume(path));
+  return volume;
+}
+
 std::unique_ptr<Basis> basisOf(const Volume& volume) {
   const auto sharpness = volume.settings.find("sg_sharpness");
   if (sharpness == volume.settings.end()) return basisInFile(volume.basisName, std::nullopt, "baker.basis");

@@ -4,6 +4,7 @@
 
 #include "basis/Basis.h"
 #include "formats/VolumeHeader.h"
+#include "volume/AdaptiveVolume.h"
 #include "volume/Volume.h"
 
 namespace baker {
@@ -14,6 +15,10 @@ namespace baker {
 // every command uses. Throws InputError naming the file and what is missing or inconsistent.
 // `parts`: how much of a shard's part to hold (VolumeHeader.h).
 Volume readVolume(const std::string& path, PartReading parts = PartReading::EveryProbe);
+
+// Every level of an adaptive volume (an OpenVDB file written by writeAdaptiveVdb), or the one
+// level of a uniform volume in any format readVolume reads.
+AdaptiveVolume readLevels(const std::string& path);
 
 // Which format `path` holds, by its name or the files in its directory: "vdb", "exr", "bevy",
 // "threejs". InputError for a directory of none of them or a missing file.

@@ -1,39 +1,16 @@
 #include "formats/VolumeSampler.h"
 
-#include <algorithm>
-#include <cmath>
+#include "volume/ProbeInterpolation.h"
 
 namespace baker {
 
 VolumeSample sampleVolume(const Volume& v, const Eigen::Vector3d& world) {
-  const ProbeGrid& g = v.grid;
+  const ProbeInterpolation interpolation = interpolationAt(v, world);
   VolumeSample s;
-  s.gridPosition = (world - g.origin) / g.spacing;
-  int lo[3];
-  double t[3];
-  for (int a = 0; a < 3; ++a) {
-    s.gridPosition[a] = std::clamp(s.gridPosition[a], 0.0, double(g.dims[a] - 1));
-    lo[a] = std::min(int(std::floor(s.gridPosition[a])), std::max(0, g.dims[a] - 2));
-    t[a] = g.dims[a] > 1 ? s.gridPosition[a] - lo[a] : 0.0;
-  }
-  s.coefficients.assign(v.coefficientsPerProbe, 0.0f);
-  s.visibility.assign(v.visibilityPerProbe, 0.0f);
-  for (int corner = 0; corner < 8; ++corner) {
-    int index[3];
-    double weight = 1.0;
-    for (int a = 0; a < 3; ++a) {
-      const int step = (corner >> a) & 1;
-      if (step && g.dims[a] == 1) weight = 0.0;
-      index[a] = std::min(lo[a] + step, g.dims[a] - 1);
-      weight *= step ? t[a] : 1.0 - t[a];
-    }
-    if (weight == 0.0) continue;
-    const std::int64_t p = g.linearIndex(index[0], index[1], index[2]);
-    for (int c = 0; c < v.coefficientsPerProbe; ++c)
-      s.coefficients[c] += float(weight * v.coefficients[p * v.coefficientsPerProbe + c]);
-    for (int c = 0; c < v.visibilityPerProbe; ++c)
-      s.visibility[c] += float(weight * v.visibility[p * v.visibilityPerProbe + c]);
-  }
+  s.gridPosition = interpolation.gridPosition;
+  s.coefficients.resize(std::size_t(v.coefficientsPerProbe));
+  s.visibility.resize(std::size_t(v.visibilityPerProbe));
+  interpolation.apply(v, /*renormalise=*/false, s.coefficients.data(), s.visibility.data());
   return s;
 }
 

@@ -7,9 +7,7 @@
 
 namespace baker {
 
-// What an engine does with a volume at a world position: the probes' coefficients (and sky
-// visibility) interpolated trilinearly between the eight probes around it, the position clamped
-// to the grid's probes (a 3D texture with clamp-to-edge addressing, sampled at texel centres).
+// What an engine does with a volume at a world position (volume/ProbeInterpolation.h).
 struct VolumeSample {
   Eigen::Vector3d gridPosition;  // continuous probe index after clamping
   std::vector<float> coefficients;

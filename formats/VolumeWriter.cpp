@@ -116,4 +116,18 @@ EngineExport writeVolume(const Volume& volume, const Basis& basis, const VolumeO
   return {};
 }
 
+void requireLevelsWritable(const VolumeOutput& output, int levels) {
+  if (levels > 1 && output.format != VolumeFormat::Vdb)
+    throw SettingError("format", fmt::format("{}: an adaptive volume's levels are written to a .vdb file only, so far "
+                                             "(docs/ADAPTIVE.md)",
+                                             volumeFormatName(output.format)));
+}
+
+EngineExport writeLevels(const AdaptiveVolume& volume, const Basis& basis, const VolumeOutput& output) {
+  if (volume.levels.size() == 1) return writeVolume(volume.levels.front(), basis, output);
+  requireLevelsWritable(output, int(volume.levels.size()));
+  writeAdaptiveVdb(volume, basis, output.path);
+  return {};
+}
+
 }  // namespace baker

@@ -4,6 +4,7 @@
 #include "basis/Basis.h"
 #include "formats/EngineExport.h"
 #include "formats/ExrSlices.h"
+#include "volume/AdaptiveVolume.h"
 #include "volume/Volume.h"
 
 namespace baker {
@@ -46,5 +47,10 @@ std::string volumeConversion(const VolumeOutput& output, const Basis& basis);
 
 // Writes the volume; for an engine's format, returns what the conversion did.
 EngineExport writeVolume(const Volume& volume, const Basis& basis, const VolumeOutput& output);
+
+// Checked before baking: SettingError("format") when the output cannot hold `levels` levels.
+void requireLevelsWritable(const VolumeOutput& output, int levels);
+// Writes every level (writeAdaptiveVdb), or the one level of a uniform volume as writeVolume does.
+EngineExport writeLevels(const AdaptiveVolume& volume, const Basis& basis, const VolumeOutput& output);
 
 }  // namespace baker

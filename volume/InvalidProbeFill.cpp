@@ -7,7 +7,12 @@ namespace baker {
 
 void fillInvalidProbes(const ProbeGrid& grid, const std::vector<ProbeState>& states, int valuesPerProbe,
                        std::vector<float>& values) {
-  const std::int64_t probes = grid.probeCount();
+  fillInvalidProbes(grid, ProbeRows(), states, valuesPerProbe, values);
+}
+
+void fillInvalidProbes(const ProbeGrid& grid, const ProbeRows& rows, const std::vector<ProbeState>& states,
+                       int valuesPerProbe, std::vector<float>& values) {
+  const std::int64_t probes = rows.count(grid);
   if (valuesPerProbe < 0 || std::int64_t(states.size()) != probes ||
       std::int64_t(values.size()) != probes * valuesPerProbe)
     throw std::invalid_argument("fillInvalidProbes: states and values do not match the grid");
@@ -15,14 +20,18 @@ void fillInvalidProbes(const ProbeGrid& grid, const std::vector<ProbeState>& sta
   const std::int64_t dx = grid.dims.x(), dy = grid.dims.y(), dz = grid.dims.z();
   // Face neighbours are the nearest valid data, and every probe of the grid is reached through
   // them; the 26 would add corners √3 spacings away without reaching anything new.
-  const auto forEachFaceNeighbour = [&](std::int64_t p, auto&& visit) {
-    const std::int64_t i = p % dx, j = (p / dx) % dy, k = p / (dx * dy);
-    if (i > 0) visit(p - 1);
-    if (i + 1 < dx) visit(p + 1);
-    if (j > 0) visit(p - dx);
-    if (j + 1 < dy) visit(p + dx);
-    if (k > 0) visit(p - dx * dy);
-    if (k + 1 < dz) visit(p + dx * dy);
+  const auto forEachFaceNeighbour = [&](std::int64_t row, auto&& visit) {
+    const std::int64_t p = rows.probeAt(grid, row);
+    const int i = int(p % dx), j = int((p / dx) % dy), k = int(p / (dx * dy));
+    const auto visitHeld = [&](int a, int b, int c) {
+      if (const std::int64_t n = rows.row(grid, a, b, c); n >= 0) visit(n);
+    };
+    if (i > 0) visitHeld(i - 1, j, k);
+    if (i + 1 < dx) visitHeld(i + 1, j, k);
+    if (j > 0) visitHeld(i, j - 1, k);
+    if (j + 1 < dy) visitHeld(i, j + 1, k);
+    if (k > 0) visitHeld(i, j, k - 1);
+    if (k + 1 < dz) visitHeld(i, j, k + 1);
   };
 
   // Known probes can feed their neighbours; a queued one is filled by the current pass and

@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "volume/ProbeGrid.h"
+#include "volume/ProbeRows.h"
 #include "volume/ProbeState.h"
 
 namespace baker {
@@ -16,5 +17,9 @@ namespace baker {
 // a bake cut into shards runs it once, when the parts are merged.
 void fillInvalidProbes(const ProbeGrid& grid, const std::vector<ProbeState>& states, int valuesPerProbe,
                        std::vector<float>& values);
+// The same over the probes `rows` holds (states and values by row): a probe not held is neither
+// filled nor a neighbour.
+void fillInvalidProbes(const ProbeGrid& grid, const ProbeRows& rows, const std::vector<ProbeState>& states,
+                       int valuesPerProbe, std::vector<float>& values);
 
 }  // namespace baker

@@ -21,6 +21,21 @@ struct ProbeGrid {
   // Bricks per axis, the last one on each axis possibly partial.
   Eigen::Vector3i brickCounts() const { return (dims.array() + kBrickSize - 1) / kBrickSize; }
   std::int64_t brickCount() const { return brickCounts().cast<std::int64_t>().prod(); }
+  // Brick `brick` (linear brick index bx + Bx·(by + By·bz)): its first probe, and how many
+  // probes it holds per axis (fewer than kBrickSize in the last brick of an axis).
+  Eigen::Vector3i brickCorner(std::int64_t brick) const {
+    const Eigen::Vector3i b = brickCounts();
+    return kBrickSize * Eigen::Vector3i(int(brick % b.x()), int(brick / b.x() % b.y()),
+                                        int(brick / (std::int64_t(b.x()) * b.y())));
+  }
+  Eigen::Vector3i brickExtent(std::int64_t brick) const {
+    const Eigen::Vector3i lo = brickCorner(brick);
+    return (lo.array() + kBrickSize).min(dims.array()) - lo.array();
+  }
+  std::int64_t brickOf(int i, int j, int k) const {
+    const Eigen::Vector3i b = brickCounts();
+    return i / kBrickSize + std::int64_t(b.x()) * (j / kBrickSize + std::int64_t(b.y()) * (k / kBrickSize));
+  }
 };
 
 // The default spacing aims for this many probes along the longest side of a small scene...

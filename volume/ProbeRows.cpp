@@ -1,33 +1,30 @@
 #include "volume/ProbeRows.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace baker {
 
 ProbeRows::ProbeRows(const ProbeGrid& grid, const std::vector<std::int64_t>& bricks)
-    : firstRowOfBrick_(std::size_t(grid.brickCount()), -1) {
-  const Eigen::Vector3i counts = grid.brickCounts();
+    : firstRowOfBrick_(std::size_t(grid.brickCount()), -1), bricks_(bricks) {
+  firstRows_.reserve(bricks.size());
   for (const std::int64_t b : bricks) {
     if (b < 0 || b >= std::int64_t(firstRowOfBrick_.size()) || firstRowOfBrick_[std::size_t(b)] >= 0)
       throw std::logic_error("ProbeRows: a brick outside the grid, or listed twice");
     firstRowOfBrick_[std::size_t(b)] = rows_;
-    const Eigen::Vector3i lo = kBrickSize * Eigen::Vector3i(int(b % counts.x()), int(b / counts.x() % counts.y()),
-                                                            int(b / (std::int64_t(counts.x()) * counts.y())));
-    const Eigen::Vector3i size = (lo.array() + kBrickSize).min(grid.dims.array()) - lo.array();
-    rows_ += std::int64_t(size.x()) * size.y() * size.z();
+    firstRows_.push_back(rows_);
+    rows_ += grid.brickExtent(b).cast<std::int64_t>().prod();
   }
 }
 
 std::int64_t ProbeRows::row(const ProbeGrid& grid, int i, int j, int k) const {
   if (holdsEveryProbe()) return grid.linearIndex(i, j, k);
-  const Eigen::Vector3i counts = grid.brickCounts();
-  const int bi = i / kBrickSize, bj = j / kBrickSize, bk = k / kBrickSize;
-  const std::int64_t first = firstRowOfBrick_[std::size_t(bi + std::int64_t(counts.x()) * (bj + std::int64_t(counts.y()) * bk))];
+  const std::int64_t brick = grid.brickOf(i, j, k);
+  const std::int64_t first = firstRowOfBrick_[std::size_t(brick)];
   if (first < 0) return -1;
   // Within the brick, x fastest, over the brick's own (possibly partial) extent.
-  const int w = std::min(kBrickSize, grid.dims.x() - bi * kBrickSize);
-  const int h = std::min(kBrickSize, grid.dims.y() - bj * kBrickSize);
-  return first + (i - bi * kBrickSize) + w * ((j - bj * kBrickSize) + std::int64_t(h) * (k - bk * kBrickSize));
+  const Eigen::Vector3i lo = grid.brickCorner(brick), size = grid.brickExtent(brick);
+  return first + (i - lo.x()) + size.x() * ((j - lo.y()) + std::int64_t(size.y()) * (k - lo.z()));
 }
 
 std::int64_t ProbeRows::row(const ProbeGrid& grid, std::int64_t probe) const {
@@ -39,10 +36,12 @@ std::int64_t ProbeRows::row(const ProbeGrid& grid, std::int64_t probe) const {
 
 std::int64_t ProbeRows::probeAt(const ProbeGrid& grid, std::int64_t row) const {
   if (holdsEveryProbe()) return row >= 0 && row < grid.probeCount() ? row : -1;
-  // A search through the grid: only an error message asks.
-  for (std::int64_t p = 0; p < grid.probeCount(); ++p)
-    if (this->row(grid, p) == row) return p;
-  return -1;
+  if (row < 0 || row >= rows_) return -1;
+  const std::size_t n = std::size_t(std::upper_bound(firstRows_.begin(), firstRows_.end(), row) - firstRows_.begin()) - 1;
+  const Eigen::Vector3i lo = grid.brickCorner(bricks_[n]), size = grid.brickExtent(bricks_[n]);
+  const std::int64_t local = row - firstRows_[n];
+  const std::int64_t area = std::int64_t(size.x()) * size.y();
+  return grid.linearIndex(lo.x() + int(local % size.x()), lo.y() + int(local % area / size.x()), lo.z() + int(local / area));
 }
 
 }  // namespace baker

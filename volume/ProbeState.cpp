@@ -7,6 +7,7 @@ const char* probeStateName(ProbeState state) {
     case ProbeState::Valid: return "valid";
     case ProbeState::Relocated: return "relocated";
     case ProbeState::Invalid: return "invalid";
+    case ProbeState::Interpolated: return "interpolated";
   }
   return "unknown";
 }

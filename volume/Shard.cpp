@@ -76,10 +76,8 @@ std::vector<int> shardOfBricks(const ProbeGrid& grid, int count) {
 }
 
 std::vector<std::int64_t> probesOfBrick(const ProbeGrid& grid, std::int64_t brick) {
-  const Eigen::Vector3i b = grid.brickCounts();
-  const Eigen::Vector3i lo = kBrickSize * Eigen::Vector3i(int(brick % b.x()), int(brick / b.x() % b.y()),
-                                                          int(brick / (std::int64_t(b.x()) * b.y())));
-  const Eigen::Vector3i hi = (lo.array() + kBrickSize).min(grid.dims.array());
+  const Eigen::Vector3i lo = grid.brickCorner(brick);
+  const Eigen::Vector3i hi = lo + grid.brickExtent(brick);
   std::vector<std::int64_t> probes;
   probes.reserve(std::size_t(kBrickSize * kBrickSize * kBrickSize));
   for (int k = lo.z(); k < hi.z(); ++k)

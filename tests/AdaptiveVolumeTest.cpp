@@ -1,0 +1,298 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "bake/AdaptiveBaker.h"
+#include "bake/AdaptivePlacement.h"
+#include "bake/TriangleBoxOverlap.h"
+#include "basis/BasisRegistry.h"
+#include "common/Error.h"
+#include "formats/VdbReader.h"
+#include "formats/VdbWriter.h"
+#include "scene/GltfLoader.h"
+#include "tests/BakerProcess.h"
+#include "tests/GltfTestAssets.h"
+#include "tests/OnThreads.h"
+#include "tests/TestData.h"
+
+namespace baker {
+namespace {
+
+using Eigen::Vector3d;
+
+TEST(TriangleBoxOverlap, SeparatingAxesDecide) {
+  const Eigen::AlignedBox3d box(Vector3d(0, 0, 0), Vector3d(1, 1, 1));
+  // Inside, far away, and touching a face.
+  EXPECT_TRUE(triangleOverlapsBox({0.2, 0.2, 0.5}, {0.8, 0.2, 0.5}, {0.5, 0.8, 0.5}, box));
+  EXPECT_FALSE(triangleOverlapsBox({5, 5, 5}, {6, 5, 5}, {5, 6, 5}, box));
+  EXPECT_TRUE(triangleOverlapsBox({1, 0.2, 0.2}, {2, 0.2, 0.2}, {1, 0.8, 0.8}, box));
+  // A large triangle slicing through the box, no corner inside it.
+  EXPECT_TRUE(triangleOverlapsBox({-10, -10, 0.5}, {10, -10, 0.5}, {0, 20, 0.5}, box));
+  // Its axis-aligned bounds overlap the box, but its plane passes by the corner (1, 1, 1):
+  // x + y + z = 3.2 stays off the box, whose farthest corner has 3.
+  EXPECT_FALSE(triangleOverlapsBox({3.2, 0, 0}, {0, 3.2, 0}, {0, 0, 3.2}, box));
+  EXPECT_TRUE(triangleOverlapsBox({2.9, 0, 0}, {0, 2.9, 0}, {0, 0, 2.9}, box));
+  // Bounds overlap, plane crosses the box, but an edge-cross-axis separates them: a thin sliver
+  // passing beside the edge x = 1, y = 1.
+  EXPECT_FALSE(triangleOverlapsBox({1.5, 0.9, -1}, {1.5, 0.9, 2}, {0.9, 1.5, 0.5}, box));
+}
+
+// Every probe of a level sits on a probe of the next finer level, and each coarser level covers
+// the finer one.
+TEST(LevelGrids, NestOnOneLatticeAndCoverTheBounds) {
+  const Eigen::AlignedBox3f bounds(Eigen::Vector3f(-2, 0, -2), Eigen::Vector3f(2, 3, 2.1f));
+  const ProbeGrid finest = makeProbeGrid(bounds, 0.25, 1 << 20);
+  const std::vector<ProbeGrid> grids = levelGrids(finest, 3);
+  ASSERT_EQ(grids.size(), 3u);
+  for (int level = 1; level < 3; ++level) {
+    const ProbeGrid& coarse = grids[level - 1];
+    const ProbeGrid& fine = grids[level];
+    EXPECT_TRUE(nestsIn(fine, coarse));
+    EXPECT_FALSE(nestsIn(coarse, fine));
+    EXPECT_NEAR(fine.spacing * kLevelRatio, coarse.spacing, 1e-12);
+    for (int k = 0; k < coarse.dims.z(); ++k)
+      for (int j = 0; j < coarse.dims.y(); ++j)
+        for (int i = 0; i < coarse.dims.x(); ++i) {
+          const Vector3d index = (coarse.position(i, j, k) - fine.origin) / fine.spacing;
+          EXPECT_LT((index - index.array().round().matrix()).cwiseAbs().maxCoeff(), 1e-9) << i << " " << j << " " << k;
+        }
+    // The coarse cells cover the fine ones, by less than a coarse cell more.
+    for (int a = 0; a < 3; ++a) {
+      EXPECT_LE(coarse.origin[a] - 0.5 * coarse.spacing, fine.origin[a] - 0.5 * fine.spacing + 1e-9);
+      EXPECT_GE(coarse.origin[a] + (coarse.dims[a] - 0.5) * coarse.spacing, fine.origin[a] + (fine.dims[a] - 0.5) * fine.spacing - 1e-9);
+      EXPECT_LT(coarse.dims[a] * coarse.spacing, fine.dims[a] * fine.spacing + coarse.spacing);
+    }
+  }
+  // The finest level is the uniform grid at 0.25 m, half a cell inside the walls.
+  EXPECT_EQ(grids[2].dims, Eigen::Vector3i(16, 12, 17));
+  EXPECT_EQ(grids[0].dims, Eigen::Vector3i(2, 2, 2));
+  ProbeGrid shifted = grids[1];
+  shifted.origin.x() += 0.1;
+  EXPECT_FALSE(nestsIn(grids[2], shifted));
+}
+
+// A 48 m ground, a small panel 60 m up (so that the grid has air above), and a lamp 1.5 m
+// over the ground: irradiance changes fast near the ground and slowly above.
+class AdaptiveBake : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    test::GltfBuilder gltf;
+    const auto quad = [&](const std::vector<float>& corners) {
+      gltf.node({{"mesh", gltf.mesh({{"POSITION", gltf.floats(corners, "VEC3")}}, gltf.indices({0, 1, 2, 0, 2, 3}))}});
+    };
+    quad({-24, 0, -24, -24, 0, 24, 24, 0, 24, 24, 0, -24});
+    quad({0, 60, 0, 1, 60, 0, 1, 60, 1, 0, 60, 1});
+    const std::string dir = test::makeTempDir("AdaptiveBake");
+    scene_ = new Scene(loadGltf(gltf.write(dir, "ground")));
+    PunctualLight lamp;
+    lamp.position = Eigen::Vector3f(0.0f, 1.5f, 0.0f);
+    lamp.intensity = 200.0f;
+    scene_->lights.push_back(lamp);
+    tracer_ = new RayTracer(*scene_);
+    basis_ = makeBasis("sh-l2").release();
+    const ProbeGrid finest = makeProbeGrid(scene_->bounds, 1.0, 1 << 24);
+    placement_ = new AdaptivePlacement(placeAdaptive(*scene_, *tracer_, finest, 3, 1, 1 << 24));
+    settings_.rays = 32;
+    settings_.transport.bounces = 1;
+    settings_.transport.punctualLights = true;
+    settings_.transport.directPunctual = true;
+    settings_.transport.probeValidity = true;
+    volume_ = new AdaptiveVolume(bakeAdaptive(*scene_, *tracer_, *basis_, *placement_, settings_, &stats_));
+  }
+  static void TearDownTestSuite() {
+    delete volume_;
+    delete placement_;
+    delete basis_;
+    delete tracer_;
+    delete scene_;
+  }
+
+  // Irradiance (mean of R, G, B) facing `normal` where an engine samples the volume at `at`.
+  static double irradiance(const AdaptiveVolume& v, const Vector3d& at, const Vector3d& normal) {
+    std::vector<float> coefficients(std::size_t(v.coarsest().coefficientsPerProbe));
+    std::vector<float> visibility(std::size_t(v.coarsest().visibilityPerProbe));
+    sampleLevels(v.levels, int(v.levels.size()), at, coefficients.data(), visibility.data());
+    return double(basis_->reconstruct(coefficients.data(), normal).mean());
+  }
+
+  static Scene* scene_;
+  static RayTracer* tracer_;
+  static Basis* basis_;
+  static AdaptivePlacement* placement_;
+  static BakeSettings settings_;
+  static BakeStats stats_;
+  static AdaptiveVolume* volume_;
+};
+Scene* AdaptiveBake::scene_ = nullptr;
+RayTracer* AdaptiveBake::tracer_ = nullptr;
+Basis* AdaptiveBake::basis_ = nullptr;
+AdaptivePlacement* AdaptiveBake::placement_ = nullptr;
+BakeSettings AdaptiveBake::settings_;
+BakeStats AdaptiveBake::stats_;
+AdaptiveVolume* AdaptiveBake::volume_ = nullptr;
+
+TEST_F(AdaptiveBake, FineBricksOnlyNearGeometry) {
+  const AdaptivePlacement& p = *placement_;
+  ASSERT_EQ(p.levels(), 3);
+  EXPECT_EQ(std::int64_t(p.bricks[0].size()), p.grids[0].brickCount()) << "level 0 covers the scene";
+  for (int level = 1; level < 3; ++level) {
+    const ProbeGrid& g = p.grids[std::size_t(level)];
+    EXPECT_GT(p.bricks[std::size_t(level)].size(), 0u);
+    EXPECT_LT(std::int64_t(p.bricks[std::size_t(level)].size()), g.brickCount()) << "level " << level << " fills the air";
+    for (const std::int64_t b : p.bricks[std::size_t(level)]) {
+      // A placed brick reaches within a cell of the ground (y = 0) or of the panel (y = 60).
+      const double lo = g.position(0, g.brickCorner(b).y(), 0).y() - g.spacing;
+      const double hi = g.position(0, g.brickCorner(b).y() + g.brickExtent(b).y() - 1, 0).y() + g.spacing;
+      EXPECT_TRUE((lo <= 0.0 && hi >= 0.0) || (lo <= 60.0 && hi >= 60.0)) << "level " << level << " brick " << b;
+    }
+  }
+  EXPECT_LT(p.probes(), std::int64_t(probesPerAxis(scene_->bounds, 1.0).prod())) << "fewer probes than uniform at 1 m";
+  EXPECT_GT(stats_.interpolatedProbes, 0);
+}
+
+// The test: along a line crossing level boundaries, sampled irradiance has no jump
+// larger than the largest step between neighbouring probes on either side; in fact none at all
+// beyond float rounding at the change of level itself, because a finer level's border probes
+// hold the coarser interpolation.
+TEST_F(AdaptiveBake, NoJumpWhereTheLevelChanges) {
+  const Vector3d normal = Vector3d(1, -1, 0).normalized();
+  const double step = 0.01;
+  int crossings = 0;
+  for (const double x : {5.3, -11.6, 17.2}) {
+    int previousLevel = -1;
+    double previous = 0.0;
+    for (double y = 0.5; y < 59.5; y += step) {
+      const Vector3d at(x, y, 3.7);
+      const int level = finestLevelAt(volume_->levels, 3, at).level;
+      const double e = irradiance(*volume_, at, normal);
+      if (previousLevel >= 0 && level != previousLevel) {
+        ++crossings;
+        // The largest step between neighbouring probes of either level along the line.
+        double probeStep = 0.0;
+        for (const int l : {level, previousLevel}) {
+          const double s = volume_->levels[std::size_t(l)].grid.spacing;
+          for (int n = -2; n < 2; ++n)
+            probeStep = std::max(probeStep, std::abs(irradiance(*volume_, at + Vector3d(0, n * s, 0), normal) -
+                                                     irradiance(*volume_, at + Vector3d(0, (n + 1) * s, 0), normal)));
+        }
+        const double jump = std::abs(e - previous);
+        EXPECT_LE(jump, probeStep) << "x " << x << " y " << y << ": level " << previousLevel << " → " << level;
+        // Continuity: the level change found to within a few float steps, and E on either side of it.
+        Vector3d below(x, y - step, 3.7), above(x, y, 3.7);
+        for (int halving = 0; halving < 40; ++halving) {
+          const Vector3d middle = 0.5 * (below + above);
+          (finestLevelAt(volume_->levels, 3, middle).level == previousLevel ? below : above) = middle;
+        }
+        const double across = std::abs(irradiance(*volume_, above, normal) - irradiance(*volume_, below, normal));
+        EXPECT_LE(across, 1e-5 * std::abs(e)) << "x " << x << " y " << below.y() << ": level " << previousLevel
+                                              << " → " << level << ", E " << e;
+      }
+      previousLevel = level;
+      previous = e;
+    }
+  }
+  EXPECT_GE(crossings, 6) << "the lines must cross from the finest level to the coarsest and back";
+}
+
+TEST_F(AdaptiveBake, SameBitsOnAnyThreadCount) {
+  for (const int threads : {1, 2}) {
+    BakeStats stats;
+    const AdaptiveVolume other = test::onThreads(
+        threads, [&] { return bakeAdaptive(*scene_, *tracer_, *basis_, *placement_, settings_, &stats); });
+    ASSERT_EQ(other.levels.size(), volume_->levels.size());
+    for (std::size_t l = 0; l < other.levels.size(); ++l) {
+      EXPECT_EQ(other.levels[l].coefficients, volume_->levels[l].coefficients) << threads << " threads, level " << l;
+      EXPECT_EQ(other.levels[l].visibility, volume_->levels[l].visibility) << threads << " threads, level " << l;
+      EXPECT_EQ(other.levels[l].states, volume_->levels[l].states) << threads << " threads, level " << l;
+    }
+    EXPECT_EQ(stats.rays.total(), stats_.rays.total());
+  }
+}
+
+TEST_F(AdaptiveBake, VdbHoldsEveryLevel) {
+  const std::string dir = test::makeTempDir("AdaptiveVdb");
+  const std::string path = dir + "/levels.vdb";
+  writeAdaptiveVdb(*volume_, *basis_, path);
+  const AdaptiveVolume read = readAdaptiveVdb(path);
+  ASSERT_EQ(read.levels.size(), 3u);
+  EXPECT_EQ(read.marginCells, 1);
+  for (std::size_t l = 0; l < 3; ++l) {
+    const Volume& a = volume_->levels[l];
+    const Volume& b = read.levels[l];
+    EXPECT_EQ(a.grid.dims, b.grid.dims);
+    EXPECT_EQ(a.grid.origin, b.grid.origin);
+    EXPECT_EQ(a.grid.spacing, b.grid.spacing);
+    EXPECT_EQ(a.rows.bricks(), b.rows.bricks()) << "level " << l;
+    EXPECT_EQ(a.coefficients, b.coefficients) << "level " << l;
+    EXPECT_EQ(a.visibility, b.visibility) << "level " << l;
+    EXPECT_EQ(a.states, b.states) << "level " << l;
+  }
+  for (const Vector3d& at : {Vector3d(3.3, 0.4, -7.1), Vector3d(-20, 12, 20), Vector3d(0.5, 59.5, 0.5)})
+    EXPECT_EQ(irradiance(read, at, Vector3d::UnitY()), irradiance(*volume_, at, Vector3d::UnitY()));
+  // The same volume gives the same bytes.
+  const std::string again = dir + "/again.vdb";
+  writeAdaptiveVdb(read, *basis_, again);
+  std::ifstream first(path, std::ios::binary), second(again, std::ios::binary);
+  EXPECT_TRUE(std::equal(std::istreambuf_iterator<char>(first), {}, std::istreambuf_iterator<char>(second), {}));
+  // A reader of one level refuses it rather than reading its coarsest level as the whole.
+  try {
+    readVdb(path);
+    ADD_FAILURE() << "an adaptive volume was read as a uniform one";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("adaptive volume of 3 levels"), std::string::npos) << e.what();
+  }
+}
+
+// A solid cube 40 m wide: the bricks of level 0 deep inside it are not placed.
+TEST(AdaptivePlacement, NothingDeepInsideClosedGeometry) {
+  test::GltfBuilder gltf;
+  std::vector<float> corners;
+  for (int c = 0; c < 8; ++c) corners.insert(corners.end(), {c & 1 ? 20.f : -20.f, c & 2 ? 20.f : -20.f, c & 4 ? 20.f : -20.f});
+  // Outward-facing (counter-clockwise seen from outside) faces of the cube.
+  const std::vector<std::uint32_t> faces = {0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6, 0, 1, 5, 0, 5, 4,
+                                            2, 6, 7, 2, 7, 3, 0, 4, 6, 0, 6, 2, 1, 3, 7, 1, 7, 5};
+  gltf.node({{"mesh", gltf.mesh({{"POSITION", gltf.floats(corners, "VEC3")}}, gltf.indices(faces))}});
+  const Scene scene = loadGltf(gltf.write(test::makeTempDir("SolidCube"), "cube"));
+  const RayTracer tracer(scene);
+  const ProbeGrid coarsest = makeProbeGrid(scene.bounds, 1.0, 1 << 20);  // 40³ probes, 5³ bricks
+  const AdaptivePlacement p = placeAdaptive(scene, tracer, coarsest, 1, 1, 1 << 20);
+  EXPECT_EQ(p.deepInsideBricks, 27) << "the 3³ bricks that no face comes within a cell of";
+  EXPECT_EQ(p.bricks[0].size(), 125u - 27u);
+}
+
+TEST(AdaptiveBadInput, ClearMessagesAndExitCode2) {
+  const std::string dir = test::makeTempDir("AdaptiveBadInput");
+  const std::string scene = test::sourcePath("data/default_room/default_room.gltf");
+  const auto rejected = [&](const std::vector<std::string>& args, const std::string& needle) {
+    std::vector<std::string> all{scene};
+    all.insert(all.end(), args.begin(), args.end());
+    const test::ProcessResult run = test::runBaker(dir, all);
+    EXPECT_EQ(run.exitCode, 2) << run.err;
+    EXPECT_NE(run.err.find(needle), std::string::npos) << run.err;
+  };
+  rejected({"--placement", "adaptive", "--levels", "0"}, "--levels must be in 1..4, got 0");
+  rejected({"--placement", "adaptive", "--levels", "5"}, "--levels must be in 1..4, got 5");
+  rejected({"--placement", "adaptive", "--margin", "5"}, "--margin must be in 0..4 cells, got 5");
+  rejected({"--placement", "adaptive", "--margin", "-1"}, "--margin must be in 0..4 cells, got -1");
+  rejected({"--placement", "sparse"}, "--placement must be uniform or adaptive");
+  rejected({"--levels", "2"}, "--levels applies to --placement adaptive only");
+  rejected({"--placement", "adaptive", "--format", "exr", "--out", "x_exr"}, "levels are written to a .vdb file only");
+  rejected({"--placement", "adaptive", "--shard", "0/2"}, "not cut into shards yet");
+  EXPECT_FALSE(std::filesystem::exists(dir + "/x_exr"));
+
+  const test::ProcessResult bake =
+      test::runBaker(dir, {scene, "--placement", "adaptive", "--levels", "2", "--rays", "8", "--out", "a.vdb", "--quiet"});
+  ASSERT_EQ(bake.exitCode, 0) << bake.err;
+  for (const std::string& command : {"preview", "view"}) {
+    const test::ProcessResult run = test::runBaker(dir, {command, "a.vdb", "--out", command == "preview" ? "o.png" : "o"});
+    EXPECT_EQ(run.exitCode, 2) << command << ": " << run.err;
+    EXPECT_NE(run.err.find("an adaptive volume of 2 levels"), std::string::npos) << command << ": " << run.err;
+  }
+  const test::ProcessResult sample = test::runBaker(dir, {"sample", "a.vdb", "--at", "0,1,0", "--normal", "0,1,0", "--json"});
+  EXPECT_EQ(sample.exitCode, 0) << sample.err;
+  EXPECT_NE(sample.out.find("\"level\": 1"), std::string::npos) << sample.out;
+}
+
+}  // namespace
+}  // namespace baker

@@ -1,0 +1,36 @@
+#pragma once
+#include <Eigen/Core>
+#include <vector>
+
+#include "volume/LevelGrids.h"
+#include "volume/ProbeInterpolation.h"
+#include "volume/Volume.h"
+
+namespace baker {
+
+// A volume baked with adaptive placement: levels of probes nested over one box (LevelGrids.h),
+// coarsest first. Each level is a Volume on its own grid holding only the bricks placed at that
+// level (Volume::rows); level 0 holds every brick but those deep inside closed geometry. The
+// settings that made it are level 0's. A uniform bake is the case of one level.
+struct AdaptiveVolume {
+  std::vector<Volume> levels;
+  int marginCells = kDefaultMarginCells;
+
+  const Volume& coarsest() const { return levels.front(); }
+};
+
+// The level that serves a position, and its interpolation there: the finest of levels
+// [0, levelCount) whose probes around the position are all held. Level 0 when none is (a
+// point deep inside closed geometry, where level 0's bricks are not placed), incomplete:
+// apply it renormalised.
+struct LevelChoice {
+  int level = 0;
+  ProbeInterpolation interpolation;
+};
+LevelChoice finestLevelAt(const std::vector<Volume>& levels, int levelCount, const Eigen::Vector3d& world);
+
+// The interpolated values of levels [0, levelCount) at `world`: what a decoder returns there.
+void sampleLevels(const std::vector<Volume>& levels, int levelCount, const Eigen::Vector3d& world, float* coefficients,
+                  float* visibility);
+
+}  // namespace baker

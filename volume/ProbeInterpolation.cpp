@@ -1,0 +1,57 @@
+#include "volume/ProbeInterpolation.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace baker {
+
+ProbeInterpolation interpolationAt(const Volume& v, const Eigen::Vector3d& world) {
+  const ProbeGrid& g = v.grid;
+  ProbeInterpolation s;
+  s.gridPosition = (world - g.origin) / g.spacing;
+  int lo[3];
+  double t[3];
+  for (int a = 0; a < 3; ++a) {
+    s.gridPosition[a] = std::clamp(s.gridPosition[a], 0.0, double(g.dims[a] - 1));
+    lo[a] = std::min(int(std::floor(s.gridPosition[a])), std::max(0, g.dims[a] - 2));
+    t[a] = g.dims[a] > 1 ? s.gridPosition[a] - lo[a] : 0.0;
+  }
+  for (int corner = 0; corner < 8; ++corner) {
+    int index[3];
+    double weight = 1.0;
+    for (int a = 0; a < 3; ++a) {
+      const int step = (corner >> a) & 1;
+      if (step && g.dims[a] == 1) weight = 0.0;
+      index[a] = std::min(lo[a] + step, g.dims[a] - 1);
+      weight *= step ? t[a] : 1.0 - t[a];
+    }
+    if (weight == 0.0) continue;
+    s.held[s.corners] = v.rows.row(g, index[0], index[1], index[2]);
+    s.weights[s.corners++] = weight;
+  }
+  return s;
+}
+
+bool ProbeInterpolation::complete() const {
+  return std::all_of(held, held + corners, [](std::int64_t row) { return row >= 0; });
+}
+
+void ProbeInterpolation::apply(const Volume& v, bool renormalise, float* coefficients, float* visibility) const {
+  std::fill_n(coefficients, v.coefficientsPerProbe, 0.0f);
+  std::fill_n(visibility, v.visibilityPerProbe, 0.0f);
+  double total = 0.0;
+  for (int n = 0; n < corners; ++n) {
+    if (held[n] < 0) continue;
+    const std::int64_t row = held[n];
+    total += weights[n];
+    for (int c = 0; c < v.coefficientsPerProbe; ++c)
+      coefficients[c] += float(weights[n] * v.coefficients[row * v.coefficientsPerProbe + c]);
+    for (int c = 0; c < v.visibilityPerProbe; ++c)
+      visibility[c] += float(weights[n] * v.visibility[row * v.visibilityPerProbe + c]);
+  }
+  if (!renormalise || total == 0.0 || total == 1.0) return;
+  for (int c = 0; c < v.coefficientsPerProbe; ++c) coefficients[c] = float(coefficients[c] / total);
+  for (int c = 0; c < v.visibilityPerProbe; ++c) visibility[c] = float(visibility[c] / total);
+}
+
+}  // namespace baker
