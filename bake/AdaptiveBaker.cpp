@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <atomic>
+#include <chrono>
 
 #include "common/Error.h"
 #include "volume/InvalidProbeFill.h"
@@ -55,6 +56,7 @@ AdaptiveVolume bakeAdaptive(const Scene& scene, const RayTracer& tracer, const B
                                               "machine has; nothing was traced (raise the spacing or lower the levels)",
                                               placement.probes(), placement.levels(), basis.name(), needed / double(1ull << 30)));
   const BrickBaker baker(scene, tracer, basis, settings);
+  const auto start = std::chrono::steady_clock::now();
   if (stats) *stats = BakeStats{};
   std::int64_t brickCount = 0;
   for (const std::vector<std::int64_t>& bricks : placement.bricks) brickCount += std::int64_t(bricks.size());
@@ -85,6 +87,7 @@ AdaptiveVolume bakeAdaptive(const Scene& scene, const RayTracer& tracer, const B
   std::vector<const Volume*> levels;
   for (const Volume& level : volume.levels) levels.push_back(&level);
   baker.finishStats(levels, stats);
+  if (stats) stats->traceSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return volume;
 }
 

@@ -107,6 +107,10 @@ AdaptivePlacement placeAdaptive(const Scene& scene, const RayTracer& tracer, con
   placement.grids = levelGrids(finest, levels);
   placement.marginCells = marginCells;
   const ProbeGrid& coarsest = placement.grids.front();
+  if (double(finest.brickCount()) > kMaxLevelBricks)
+    throw SettingError("spacing", fmt::format("{:.4g} m gives {} bricks at the finest level, beyond the {:.3g} an adaptive bake "
+                                              "indexes (raise the spacing)",
+                                              finest.spacing, finest.brickCount(), kMaxLevelBricks));
   const std::vector<std::unique_ptr<BrickMarks>> marks = markGeometry(scene, placement.grids, marginCells);
 
   const std::int64_t coarseBricks = coarsest.brickCount();

@@ -17,8 +17,7 @@ namespace baker {
 //    its surface;
 //  - a finer level places a brick when a triangle lies within the box of its probes grown by
 //    `marginCells` of its cells (an exact triangle–box test), so probes are dense where light
-//    changes (near surfaces) and sparse in open air. With a margin of a cell or more, the bricks
-//    of a level lie within those of the level above; the sampler does not need it.
+//    changes (near surfaces) and sparse in open air.
 struct AdaptivePlacement {
   std::vector<ProbeGrid> grids;                   // coarsest first
   std::vector<std::vector<std::int64_t>> bricks;  // per level, the bricks placed, by increasing index

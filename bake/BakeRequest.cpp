@@ -31,8 +31,8 @@ void validateBakeRequest(const BakeRequest& r) {
     throw SettingError("placement", fmt::format("must be uniform or adaptive, got '{}'", r.placement));
   if (r.levels < 1 || r.levels > kMaxLevels)
     throw SettingError("levels", fmt::format("must be in 1..{}, got {}", kMaxLevels, r.levels));
-  if (r.marginCells < 0 || r.marginCells > kMaxMarginCells)
-    throw SettingError("margin", fmt::format("must be in 0..{} cells, got {}", kMaxMarginCells, r.marginCells));
+  if (r.marginCells < kMinMarginCells || r.marginCells > kMaxMarginCells)
+    throw SettingError("margin", fmt::format("must be in {}..{} cells, got {}", kMinMarginCells, kMaxMarginCells, r.marginCells));
   if (r.adaptive() && r.shard)
     throw SettingError("shard", "an adaptive bake is not cut into shards yet; bake it whole, or with uniform placement");
   requireKnownEffects(r.turnedOff);

@@ -175,6 +175,7 @@ Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basi
   requireVolumeFitsInMemory(grid, shard ? shard->count : 1, basis, physicalMemoryBytes());
   const std::vector<std::int64_t> toBake = bricksToBake(grid, shard);
   const BrickBaker baker(scene, tracer, basis, settings);
+  const auto start = std::chrono::steady_clock::now();
   Volume volume = baker.emptyVolume(grid, shard ? ProbeRows(grid, toBake) : ProbeRows());
   if (stats) *stats = BakeStats{};
   std::atomic<std::int64_t> bricksDone{0};
@@ -190,6 +191,8 @@ Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basi
   }
   requireFiniteBake(volume);
   baker.finishStats({&volume}, stats);
+  // Tracing, projecting and filling: everything after the operators.
+  if (stats) stats->traceSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return volume;
 }
 

@@ -41,7 +41,7 @@ class BrickBaker {
   // Places and traces the probes of `bricks` (linear brick indices of volume.grid, held by
   // volume.rows), except those already Interpolated, which keep their values. Probe p traces
   // the random stream of id firstId + p, so that levels of an adaptive bake draw their own.
-  // Adds what it traced to *stats (probes, bricks, rays, lattice); `progress` hears each brick.
+  // Adds what it traced to *stats (probes, bricks, rays, lattice, seconds); `brickDone` hears each brick.
   void bake(Volume& volume, const std::vector<std::int64_t>& bricks, std::uint64_t firstId, BakeStats* stats,
             const std::function<void()>& brickDone) const;
   // What only the end of a bake knows: probe states, operators, timings.

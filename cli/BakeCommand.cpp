@@ -204,8 +204,8 @@ int runBakeCommand(int argc, char** argv) {
   std::string shardText;
   bool mpi = false, dryRun = false;
   app.add_flag("--dry-run", dryRun,
-               "lay out the grid (and an adaptive bake's levels), print the plan and stop: nothing is traced or "
-               "written; with --json, the plan as JSON");
+               "lay out the grid (and an adaptive bake's levels), print the plan and stop: nothing is baked or "
+               "written (adaptive placement traces its few test rays); with --json, the plan as JSON");
   auto* shardOption = app.add_option(
       "--shard", shardText,
       "bake only shard K of N (0 <= K < N <= 4096, bricks in Morton order): a part for `baker merge`; parts are "
@@ -219,6 +219,8 @@ int runBakeCommand(int argc, char** argv) {
   return runGuarded("baker", app, argc, argv, [&]() {
     if (!shardText.empty()) options.request.shard = requireShard(shardText);
     requirePlacementOptions(app, options.request);
+    if (mpi && options.request.adaptive())
+      throw SettingError("placement", "adaptive is not baked over MPI yet (docs/ADAPTIVE.md); bake it in one process");
     const VolumeOutput output = options.request.shard ? partOutput(options.request, outPath, format)
                                                       : volumeOutput(options.request.scenePath, outPath, format, precision);
     // EXR slices are written through the image module: a missing one fails now, not after the bake.

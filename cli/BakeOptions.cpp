@@ -55,7 +55,7 @@ void addPlacementOptions(CLI::App& app, BakeRequest& request) {
       ->capture_default_str();
   app.add_option("--margin", request.marginCells,
                  "adaptive placement: a brick is refined when geometry lies within it or this many of its cells "
-                 "around it (0 to 4)")
+                 "around it (1 to 4)")
       ->capture_default_str();
 }
 

@@ -25,6 +25,13 @@ std::uintmax_t bytesOf(const std::string& path) {
   return total;
 }
 
+// Probes of every level: a uniform volume's grid, or what the levels hold.
+std::int64_t probesHeld(const AdaptiveVolume& volume) {
+  std::int64_t probes = 0;
+  for (const Volume& level : volume.levels) probes += level.rows.count(level.grid);
+  return probes;
+}
+
 // Per level: its grid and what it holds; adds each probe's state to `counts`.
 nlohmann::json levelsJson(const AdaptiveVolume& volume, std::int64_t (&counts)[kProbeStateCount]) {
   nlohmann::json levels = nlohmann::json::array();
@@ -132,7 +139,7 @@ int runInspectCommand(int argc, char** argv) {
           {"dims", {g.dims.x(), g.dims.y(), g.dims.z()}},
           {"origin", {g.origin.x(), g.origin.y(), g.origin.z()}},
           {"spacing", g.spacing},
-          {"probes", g.probeCount()},
+          {"probes", probesHeld(volume)},
           {"coefficients_per_probe", v.coefficientsPerProbe},
           {"visibility_per_probe", v.visibilityPerProbe},
           {"probe_states", {{"valid", counts[1]}, {"relocated", counts[2]}, {"invalid", counts[0]},

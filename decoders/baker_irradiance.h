@@ -448,6 +448,56 @@ inline void blendProbes(const float* const probes[8], const double weight[8], in
   }
 }
 
+// ---------------------------------------------------------------------------------------------
+// Adaptive volumes ("baker.levels" > 1, docs/ADAPTIVE.md): levels of probes, coarsest first, each
+// a grid as above holding only some bricks of 8³ probes (brick (bx, by, bz) holds probes
+// 8·bx … 8·bx + 7 along x, and so on). A point is decoded from the finest level whose probes
+// around it (those with a non-zero weight) are all held; the level's border probes hold the
+// coarser levels' values there, so the result is continuous where the level changes.
+
+struct Level {
+  Vec3 origin;
+  double spacing;
+  int dims[3];
+  // Per brick, index bx + Bx·(by + By·bz) with B = ⌈dims / 8⌉: non-zero when the level holds it.
+  // Null: every brick (a uniform volume, or a level that holds them all).
+  const unsigned char* bricksHeld;
+};
+
+inline bool levelHoldsProbe(const Level& level, long long probe) {
+  if (!level.bricksHeld) return true;
+  const long long nx = level.dims[0], ny = level.dims[1];
+  const long long i = probe % nx, j = (probe / nx) % ny, k = probe / (nx * ny);
+  const long long bx = (nx + 7) / 8, by = (ny + 7) / 8;
+  return level.bricksHeld[i / 8 + bx * (j / 8 + by * (k / 8))] != 0;
+}
+
+struct LevelNeighbourhood {
+  int level;  // which of the levels to read the probes of
+  ProbeNeighbourhood around;
+};
+
+// The finest of `count` levels (coarsest first) whose probes around `position` are all held.
+// When none is (only deep inside closed geometry), level 0 with its held probes' weights
+// renormalised, and zero weights when it holds none of them.
+inline LevelNeighbourhood finestLevelNeighbourhood(const Vec3& position, const Level* levels, int count) {
+  for (int l = count - 1; l > 0; --l) {
+    const ProbeNeighbourhood n = probeNeighbourhood(position, levels[l].origin, levels[l].spacing, levels[l].dims);
+    bool held = true;
+    for (int c = 0; c < 8 && held; ++c) held = n.weight[c] == 0.0 || levelHoldsProbe(levels[l], n.probe[c]);
+    if (held) return LevelNeighbourhood{l, n};
+  }
+  LevelNeighbourhood result{0, probeNeighbourhood(position, levels[0].origin, levels[0].spacing, levels[0].dims)};
+  double total = 0.0;
+  for (int c = 0; c < 8; ++c) {
+    if (!levelHoldsProbe(levels[0], result.around.probe[c])) result.around.weight[c] = 0.0;
+    total += result.around.weight[c];
+  }
+  if (total > 0.0 && total != 1.0)
+    for (int c = 0; c < 8; ++c) result.around.weight[c] /= total;
+  return result;
+}
+
 }  // namespace baker_decode
 
 #endif  // BAKER_IRRADIANCE_H

@@ -13,6 +13,7 @@
 #include "formats/VolumeLayout.h"
 #include "formats/VolumeMetadata.h"
 #include "volume/LevelGrids.h"
+#include "volume/MemoryEstimate.h"
 
 namespace baker {
 namespace {
@@ -34,10 +35,14 @@ ProbeGrid levelGrid(const openvdb::MetaMap& meta, const std::string& key, const 
   return grid;
 }
 
-// A voxel of a part read as its own bricks only that lies in another shard's brick.
-InputError voxelOutsideShard(const std::string& path, const std::string& name, const Volume& v, std::int64_t p) {
-  return InputError(fmt::format("{}: grid '{}' holds probe {}, outside the bricks of its shard {}", path, name, p,
-                                shardName(*v.shard)));
+// A voxel outside the bricks the volume holds: another shard's (a part read as its own bricks
+// only), or a brick a level does not hold (no leaf in its probe_state grid).
+InputError voxelNotHeld(const std::string& path, const std::string& name, const Volume& v, std::int64_t p) {
+  if (v.shard)
+    return InputError(fmt::format("{}: grid '{}' holds probe {}, outside the bricks of its shard {}", path, name, p,
+                                  shardName(*v.shard)));
+  return InputError(fmt::format("{}: grid '{}' holds probe {}, in a brick its level's probe_state grid does not hold",
+                                path, name, p));
 }
 
 // Copies the active voxels of one grid into the volume, refusing voxels outside the grid.
@@ -68,17 +73,17 @@ void readLevelGrids(openvdb::io::File& file, const std::string& path, const std:
         if (state < 0 || state >= kProbeStateCount)
           throw InputError(fmt::format("{}: grid '{}' holds {}; states are 0, 1, 2 or 3", path, name, state));
         const std::int64_t row = volume.rowOf(p);
-        if (row < 0) throw voxelOutsideShard(path, name, volume, p);
+        if (row < 0) throw voxelNotHeld(path, name, volume, p);
         volume.states[row] = ProbeState(state);
       });
     else if (spec.components == 3)
       readVoxels<openvdb::Vec3SGrid>(file, name, g, path, [&](std::int64_t p, const openvdb::Vec3s& v) {
         for (int c = 0; c < 3; ++c)
-          if (!setGridValue(volume, spec, c, p, v[c])) throw voxelOutsideShard(path, name, volume, p);
+          if (!setGridValue(volume, spec, c, p, v[c])) throw voxelNotHeld(path, name, volume, p);
       });
     else
       readVoxels<openvdb::FloatGrid>(file, name, g, path, [&](std::int64_t p, float v) {
-        if (!setGridValue(volume, spec, 0, p, v)) throw voxelOutsideShard(path, name, volume, p);
+        if (!setGridValue(volume, spec, 0, p, v)) throw voxelNotHeld(path, name, volume, p);
       });
   }
 }
@@ -98,7 +103,7 @@ VolumeHeader vdbHeader(openvdb::io::File& file, const openvdb::MetaMap& meta, co
 
 // Levels the file holds: 1 without the key.
 int levelCount(const openvdb::MetaMap& meta, const std::string& path) {
-  if (!meta.getMetadata<openvdb::Int32Metadata>(kLevelsKey)) return 1;
+  if (!meta[kLevelsKey]) return 1;
   const int levels = required<int>(meta, kLevelsKey, path);
   if (levels < 1 || levels > kMaxLevels)
     throw InputError(fmt::format("{}: {} is {}; a volume has 1 to {} levels", path, kLevelsKey, levels, kMaxLevels));
@@ -134,61 +139,81 @@ ProbeGrid nestedGrid(const openvdb::MetaMap& meta, int level, const ProbeGrid& p
   return grid;
 }
 
-}  // namespace
+// A uniform volume from its open file.
+Volume readUniform(openvdb::io::File& file, const openvdb::MetaMap& meta, const std::string& path, PartReading parts) {
+  const VolumeHeader header = vdbHeader(file, meta, path);
+  Volume volume = header.emptyVolume(path, parts);
+  readLevelGrids(file, path, "", header.hasProbeStates, volume);
+  requireFiniteValues(volume, path);
+  return volume;
+}
 
-Volume readVdb(const std::string& path, PartReading parts) {
+// Every level of an adaptive volume from its open file; the probes held in all levels together
+// are checked against the limit and this machine's memory before each level is allocated.
+AdaptiveVolume readLevelsOf(openvdb::io::File& file, const openvdb::MetaMap& meta, int levels, const std::string& path) {
+  AdaptiveVolume volume;
+  volume.marginCells = required<int>(meta, "baker.margin_cells", path);
+  if (required<int>(meta, "baker.level_ratio", path) != kLevelRatio)
+    throw InputError(fmt::format("{}: baker.level_ratio is not {}, the only ratio this reader knows", path, kLevelRatio));
+  VolumeHeader header = vdbHeader(file, meta, path);
+  if (!header.hasProbeStates) throw InputError(fmt::format("{}: grid 'probe_state' is missing", path));
+  const std::unique_ptr<Basis> basis = makeBasis(header.basisName);
+  double held = 0.0;
+  for (int level = 0; level < levels; ++level) {
+    if (level > 0) header.grid = nestedGrid(meta, level, header.grid, path);
+    const Eigen::Vector3i& d = header.grid.dims;
+    if (d.minCoeff() <= 0 || d.maxCoeff() > kMaxProbesPerAxis || double(header.grid.brickCount()) > kMaxLevelBricks)
+      throw InputError(fmt::format("{}: level {}'s dims ({}, {}, {}) are not a valid grid size", path, level, d.x(), d.y(), d.z()));
+    header.heldBricks = bricksInFile(file, levelGridPrefix(level) + "probe_state", header.grid, path);
+    held += double(header.heldBricks->size()) * kBrickSize * kBrickSize * kBrickSize;
+    if (held > kMaxProbesRead || volumeMemoryBytes(held, *basis) / 2 > double(physicalMemoryBytes()))
+      throw InputError(fmt::format("{}: levels 0 to {} hold up to {:.3g} probes, more than a volume may hold or this "
+                                   "machine's memory",
+                                   path, level, held));
+    volume.levels.push_back(header.emptyVolume(path));
+    if (level > 0) volume.levels.back().settings.clear();
+    readLevelGrids(file, path, levelGridPrefix(level), true, volume.levels.back());
+    requireFiniteValues(volume.levels.back(), path);
+  }
+  return volume;
+}
+
+// Opens the file after checking its checksum and gives it, its metadata and its level count to `read`.
+template <typename Read>
+auto withVdb(const std::string& path, Read read) {
   requireVdbChecksum(path);
   openvdb::initialize();
   try {
     openvdb::io::File file(path);
     file.open();
     openvdb::MetaMap::Ptr meta = file.getMetadata();
-    if (const int levels = levelCount(*meta, path); levels > 1)
-      throw InputError(fmt::format("{}: an adaptive volume of {} levels; this command reads a uniform volume only "
-                                   "(baker sample and baker inspect read levels)",
-                                   path, levels));
-    const VolumeHeader header = vdbHeader(file, *meta, path);
-    Volume volume = header.emptyVolume(path, parts);
-    readLevelGrids(file, path, "", header.hasProbeStates, volume);
+    auto result = read(file, *meta, levelCount(*meta, path));
     file.close();
-    requireFiniteValues(volume, path);
-    return volume;
+    return result;
   } catch (const openvdb::Exception& e) {
     throw InputError(fmt::format("{}: not a readable OpenVDB volume: {}", path, e.what()));
   }
 }
 
+}  // namespace
+
+Volume readVdb(const std::string& path, PartReading parts) {
+  return withVdb(path, [&](openvdb::io::File& file, const openvdb::MetaMap& meta, int levels) {
+    if (levels > 1)
+      throw InputError(fmt::format("{}: an adaptive volume of {} levels; this command reads a uniform volume only "
+                                   "(docs/ADAPTIVE.md says which commands read levels)",
+                                   path, levels));
+    return readUniform(file, meta, path, parts);
+  });
+}
+
 AdaptiveVolume readAdaptiveVdb(const std::string& path) {
-  requireVdbChecksum(path);
-  openvdb::initialize();
-  try {
-    openvdb::io::File file(path);
-    file.open();
-    openvdb::MetaMap::Ptr meta = file.getMetadata();
-    const int levels = levelCount(*meta, path);
+  return withVdb(path, [&](openvdb::io::File& file, const openvdb::MetaMap& meta, int levels) {
+    if (levels > 1) return readLevelsOf(file, meta, levels, path);
     AdaptiveVolume volume;
-    if (levels == 1) {
-      volume.levels.push_back(readVdb(path));
-      return volume;
-    }
-    volume.marginCells = required<int>(*meta, "baker.margin_cells", path);
-    if (required<int>(*meta, "baker.level_ratio", path) != kLevelRatio)
-      throw InputError(fmt::format("{}: baker.level_ratio is not {}, the only ratio this reader knows", path, kLevelRatio));
-    VolumeHeader header = vdbHeader(file, *meta, path);
-    if (!header.hasProbeStates) throw InputError(fmt::format("{}: grid 'probe_state' is missing", path));
-    for (int level = 0; level < levels; ++level) {
-      if (level > 0) header.grid = nestedGrid(*meta, level, header.grid, path);
-      header.heldBricks = bricksInFile(file, levelGridPrefix(level) + "probe_state", header.grid, path);
-      volume.levels.push_back(header.emptyVolume(path));
-      if (level > 0) volume.levels.back().settings.clear();
-      readLevelGrids(file, path, levelGridPrefix(level), true, volume.levels.back());
-      requireFiniteValues(volume.levels.back(), path);
-    }
-    file.close();
+    volume.levels.push_back(readUniform(file, meta, path, PartReading::EveryProbe));
     return volume;
-  } catch (const openvdb::Exception& e) {
-    throw InputError(fmt::format("{}: not a readable OpenVDB volume: {}", path, e.what()));
-  }
+  });
 }
 
 }  // namespace baker

@@ -48,7 +48,9 @@ Volume VolumeHeader::emptyVolume(const std::string& path, PartReading parts) con
                                  visibilityPerProbe, basisName, basis->functions(0).count()));
   const Eigen::Vector3i& d = grid.dims;
   const double gridProbes = double(d.x()) * d.y() * d.z();
-  if (d.x() <= 0 || d.y() <= 0 || d.z() <= 0 || gridProbes > (heldBricks ? kMaxLevelGridProbes : kMaxProbesRead))
+  if (d.minCoeff() <= 0 || d.maxCoeff() > kMaxProbesPerAxis ||
+      gridProbes > (heldBricks ? kMaxLevelGridProbes : kMaxProbesRead) ||
+      (heldBricks && double(grid.brickCount()) > kMaxLevelBricks))
     throw InputError(fmt::format("{}: baker.dims ({}, {}, {}) is not a valid grid size", path, d.x(), d.y(), d.z()));
   if (heldBricks)
     for (const std::int64_t b : *heldBricks)

@@ -2,12 +2,14 @@
 
 #include <filesystem>
 #include <fstream>
+#include <random>
 
 #include "bake/AdaptiveBaker.h"
 #include "bake/AdaptivePlacement.h"
 #include "bake/TriangleBoxOverlap.h"
 #include "basis/BasisRegistry.h"
 #include "common/Error.h"
+#include "decoders/baker_irradiance.h"
 #include "formats/VdbReader.h"
 #include "formats/VdbWriter.h"
 #include "scene/GltfLoader.h"
@@ -195,6 +197,46 @@ TEST_F(AdaptiveBake, NoJumpWhereTheLevelChanges) {
   EXPECT_GE(crossings, 6) << "the lines must cross from the finest level to the coarsest and back";
 }
 
+// The C++ header decoder, given each level's grid and which bricks it holds, picks the level the
+// library picks and decodes the same irradiance.
+TEST_F(AdaptiveBake, HeaderDecoderPicksTheFinestLevelAsTheLibraryDoes) {
+  std::vector<std::vector<unsigned char>> held;
+  std::vector<baker_decode::Level> levels;
+  for (const Volume& level : volume_->levels) {
+    const ProbeGrid& g = level.grid;
+    held.emplace_back(std::size_t(g.brickCount()));
+    for (std::int64_t b = 0; b < g.brickCount(); ++b) held.back()[std::size_t(b)] = level.rows.holdsBrick(b);
+    levels.push_back({{g.origin.x(), g.origin.y(), g.origin.z()}, g.spacing, {g.dims.x(), g.dims.y(), g.dims.z()},
+                      held.back().data()});
+  }
+  const baker_decode::BasisDecoder decoder("sh-l2");
+  const std::vector<float> zeros(27, 0.0f);
+  std::mt19937_64 random(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const Eigen::Vector3d lo = scene_->bounds.min().cast<double>(), size = scene_->bounds.sizes().cast<double>();
+  int finest = 0;
+  for (int n = 0; n < 2000; ++n) {
+    // Most points low down, where the finest level is.
+    const Vector3d at = lo + Vector3d(unit(random), std::pow(unit(random), 3.0), unit(random)).cwiseProduct(size);
+    const baker_decode::LevelNeighbourhood picked = baker_decode::finestLevelNeighbourhood({at.x(), at.y(), at.z()},
+                                                                                             levels.data(), 3);
+    ASSERT_EQ(picked.level, finestLevelAt(volume_->levels, 3, at).level) << at.transpose();
+    finest += picked.level == 2;
+    const Volume& level = volume_->levels[std::size_t(picked.level)];
+    const float* probes[8];
+    for (int c = 0; c < 8; ++c) {
+      const std::int64_t row = level.rows.row(level.grid, picked.around.probe[c]);
+      probes[c] = row >= 0 ? level.coefficients.data() + row * 27 : zeros.data();
+    }
+    float blended[27];
+    baker_decode::blendProbes(probes, picked.around.weight, 27, blended);
+    const baker_decode::Rgb e = decoder.irradiance(blended, {0.0, 1.0, 0.0});
+    const double expected = irradiance(*volume_, at, Vector3d::UnitY());
+    EXPECT_NEAR((e.r + e.g + e.b) / 3.0, expected, 1e-5 * std::abs(expected) + 1e-6) << at.transpose();
+  }
+  EXPECT_GT(finest, 100);
+}
+
 TEST_F(AdaptiveBake, SameBitsOnAnyThreadCount) {
   for (const int threads : {1, 2}) {
     BakeStats stats;
@@ -273,12 +315,13 @@ TEST(AdaptiveBadInput, ClearMessagesAndExitCode2) {
   };
   rejected({"--placement", "adaptive", "--levels", "0"}, "--levels must be in 1..4, got 0");
   rejected({"--placement", "adaptive", "--levels", "5"}, "--levels must be in 1..4, got 5");
-  rejected({"--placement", "adaptive", "--margin", "5"}, "--margin must be in 0..4 cells, got 5");
-  rejected({"--placement", "adaptive", "--margin", "-1"}, "--margin must be in 0..4 cells, got -1");
+  rejected({"--placement", "adaptive", "--margin", "5"}, "--margin must be in 1..4 cells, got 5");
+  rejected({"--placement", "adaptive", "--margin", "0"}, "--margin must be in 1..4 cells, got 0");
   rejected({"--placement", "sparse"}, "--placement must be uniform or adaptive");
   rejected({"--levels", "2"}, "--levels applies to --placement adaptive only");
   rejected({"--placement", "adaptive", "--format", "exr", "--out", "x_exr"}, "levels are written to a .vdb file only");
   rejected({"--placement", "adaptive", "--shard", "0/2"}, "not cut into shards yet");
+  rejected({"--placement", "adaptive", "--mpi"}, "--placement adaptive is not baked over MPI yet");
   EXPECT_FALSE(std::filesystem::exists(dir + "/x_exr"));
 
   const test::ProcessResult bake =

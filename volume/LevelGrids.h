@@ -14,14 +14,17 @@ namespace baker {
 // by 3 for the same reason (Unity's Adaptive Probe Volumes).
 constexpr int kLevelRatio = 3;
 constexpr int kMaxLevels = 4;
-// A brick of a level is refined when geometry lies within it or within this many of its
-// cells around it (the default, and the most accepted).
+// A brick of a finer level is placed when geometry lies within its probes' box grown by this
+// many of its cells: at least one, so that a surface between two bricks' probes marks both.
 constexpr int kDefaultMarginCells = 1;
+constexpr int kMinMarginCells = 1;
 constexpr int kMaxMarginCells = 4;
 
 // A level's grid may span at most this many probes, placed or not: a level holding only some
 // bricks indexes every brick of its grid (8 bytes each).
 constexpr double kMaxLevelGridProbes = 8.0 * 1024 * 1024 * 1024;
+// ...and at most this many bricks (the index of a level holding some costs 8 bytes per brick).
+constexpr double kMaxLevelBricks = 128.0 * 1024 * 1024;
 
 // The grids of `levels` levels whose finest is `finest`, coarsest first.
 std::vector<ProbeGrid> levelGrids(const ProbeGrid& finest, int levels);

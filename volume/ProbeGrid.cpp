@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -43,9 +44,9 @@ ProbeGrid makeProbeGrid(const Eigen::AlignedBox3f& bounds, double spacing, std::
   const Eigen::Vector3d cellCounts = probesPerAxis(bounds, spacing);
   const double cells[3] = {cellCounts.x(), cellCounts.y(), cellCounts.z()};
   for (int a = 0; a < 3; ++a) {
-    if (cells[a] > double(maxProbes))
+    if (const std::int64_t axisLimit = std::min<std::int64_t>(maxProbes, kMaxProbesPerAxis); cells[a] > double(axisLimit))
       throw SettingError("spacing", fmt::format("{} m gives {:.3g} probes along one axis of a {:.3g} m scene; the limit is {}",
-                                                spacing, cells[a], extent[a], maxProbes));
+                                                spacing, cells[a], extent[a], axisLimit));
   }
   const double total = cells[0] * cells[1] * cells[2];
   if (total > double(maxProbes))

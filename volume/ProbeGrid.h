@@ -8,6 +8,8 @@ namespace baker {
 // Probes are baked and stored in bricks of kBrickSize³: the unit of parallel work and an
 // OpenVDB leaf.
 constexpr int kBrickSize = 8;
+// Probes along one axis of any grid: far beyond a bake, and brick arithmetic stays in int.
+constexpr int kMaxProbesPerAxis = 1 << 24;
 
 // Probes on a uniform grid: probe (i,j,k) sits at origin + spacing·(i,j,k).
 struct ProbeGrid {
