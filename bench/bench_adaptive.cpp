@@ -36,6 +36,13 @@ struct PointNearSurface {
   Eigen::Vector3d position, normal;
 };
 
+void worldCorners(const Instance& instance, const Mesh& mesh, std::uint32_t triangle, Eigen::Vector3d (&corners)[3]) {
+  for (int k = 0; k < 3; ++k)
+    corners[k] = (instance.objectToWorld.cast<double>() *
+                  mesh.positions[std::size_t(mesh.triangles[triangle][k])].cast<double>().homogeneous())
+                     .head<3>();
+}
+
 // `count` points on the scene's triangles, drawn by area, `lift` off their front side.
 std::vector<PointNearSurface> surfacePoints(const Scene& scene, int count, double lift) {
   std::vector<std::pair<std::uint32_t, std::uint32_t>> triangles;
@@ -45,9 +52,7 @@ std::vector<PointNearSurface> surfacePoints(const Scene& scene, int count, doubl
     const Mesh& mesh = scene.meshes[instance.mesh];
     for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t) {
       Eigen::Vector3d c[3];
-      for (int k = 0; k < 3; ++k)
-        c[k] = (instance.objectToWorld.cast<double>() * mesh.positions[mesh.triangles[t][k]].cast<double>().homogeneous())
-                   .head<3>();
+      worldCorners(instance, mesh, t, c);
       triangles.emplace_back(i, t);
       areas.push_back(0.5 * (c[1] - c[0]).cross(c[2] - c[0]).norm());
     }
@@ -63,9 +68,7 @@ std::vector<PointNearSurface> surfacePoints(const Scene& scene, int count, doubl
     double u = unit(random), v = unit(random);
     if (u + v > 1.0) u = 1.0 - u, v = 1.0 - v;
     Eigen::Vector3d c[3];
-    for (int k = 0; k < 3; ++k)
-      c[k] = (instance.objectToWorld.cast<double>() * mesh.positions[mesh.triangles[t][k]].cast<double>().homogeneous())
-                 .head<3>();
+    worldCorners(instance, mesh, t, c);
     const Eigen::Vector3d normal = scene.frontNormal(i, t).cast<double>();
     if (!normal.allFinite() || normal.norm() < 0.5) continue;
     points.push_back({c[0] + u * (c[1] - c[0]) + v * (c[2] - c[0]) + lift * normal, normal});
