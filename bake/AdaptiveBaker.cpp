@@ -9,6 +9,7 @@
 #include "common/Error.h"
 #include "volume/InvalidProbeFill.h"
 #include "volume/MemoryEstimate.h"
+#include "volume/StoredBricks.h"
 
 namespace baker {
 namespace {
@@ -83,6 +84,10 @@ AdaptiveVolume bakeAdaptive(const Scene& scene, const RayTracer& tracer, const B
     fillInvalidProbes(grid, level.rows, level.states, level.coefficientsPerProbe, level.coefficients);
     fillInvalidProbes(grid, level.rows, level.states, level.visibilityPerProbe, level.visibility);
     requireFiniteBake(level);
+    // Dropped before finer levels read this one, so that their border probes take what a reader
+    // of the file samples.
+    const std::vector<bool> keep = bricksWorthStoring(level);
+    level = keepBricks(std::move(level), keep);
   }
   std::vector<const Volume*> levels;
   for (const Volume& level : volume.levels) levels.push_back(&level);

@@ -16,7 +16,9 @@ namespace baker {
 //    continuous where the level changes (docs/ADAPTIVE.md gives the argument);
 //  - the finest level's probe p draws the random stream of a uniform bake's probe p on the same
 //    grid, and a coarser level's those after every finer level's, so no two probes share one;
-//  - Invalid probes are filled from their own level's neighbours.
+//  - Invalid probes are filled from their own level's neighbours;
+//  - a level then keeps only the bricks worth storing (StoredBricks.h), before finer levels read
+//    it, so that its border probes take what a reader of the file samples.
 // The result depends on the settings' seed, not on the number of threads.
 AdaptiveVolume bakeAdaptive(const Scene& scene, const RayTracer& tracer, const Basis& basis,
                             const AdaptivePlacement& placement, const BakeSettings& settings, BakeStats* stats,

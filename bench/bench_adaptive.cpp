@@ -8,7 +8,11 @@
 // reference: uniform at S with the reference's rays (default 16 R, a quarter of the noise) and
 // seed 1, so that its noise is its own. Each is written as .vdb to DIR. E(n) (mean of R, G, B) is
 // sampled, as an engine samples it, at N points on the scene's surfaces (triangles drawn by area
-// with a fixed seed, a tenth of S off the front side, n the front normal). A volume's error is the
+// with a fixed seed, a tenth of S off the front side, n the front normal), from the volume as
+// baked. An adaptive volume is its file (the bake keeps only the bricks the file keeps); a uniform
+// file leaves out bricks, reading as zeros, only where every corner of a cell lies inside geometry
+// (volume/StoredBricks.h), which the points on the scene's outermost faces can reach and an
+// engine never shows. A volume's error is the
 // RMS of its difference from the reference over the points, relative to the reference's mean; the
 // error adaptive placement adds is its error minus the uniform bake's. Also reported: how far the
 // adaptive volume lies from the uniform bake itself (whose finest-level probes draw the same random

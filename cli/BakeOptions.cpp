@@ -49,7 +49,7 @@ void addBakeOptions(CLI::App& app, BakeOptions& o, bool listed) {
 void addPlacementOptions(CLI::App& app, BakeRequest& request) {
   app.add_option("--placement", request.placement,
                  "uniform: one grid at --spacing; adaptive: --levels nested levels, the finest at --spacing, "
-                 "finer bricks only near geometry (docs/ADAPTIVE.md); written as .vdb")
+                 "finer bricks only near geometry (docs/ADAPTIVE.md); written as .vdb or EXR slices")
       ->capture_default_str();
   app.add_option("--levels", request.levels, "adaptive placement: 1 to 4 levels, spacing ×3 per level")
       ->capture_default_str();

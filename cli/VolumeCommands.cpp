@@ -16,11 +16,12 @@
 namespace baker {
 namespace {
 
+// A file's size, or the sum over a volume's directory (an adaptive one's level directories too).
 std::uintmax_t bytesOf(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_directory(path, ec)) return std::filesystem::file_size(path, ec);
   std::uintmax_t total = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(path, ec))
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(path, ec))
     if (entry.is_regular_file(ec)) total += entry.file_size(ec);
   return total;
 }

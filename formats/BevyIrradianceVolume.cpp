@@ -88,7 +88,7 @@ Ktx2Texture3D textureOf(const Volume& v, const Basis& basis, EngineExport& repor
   for (int k = 0; k < g.dims.z(); ++k)
     for (int j = 0; j < g.dims.y(); ++j)
       for (int i = 0; i < g.dims.x(); ++i) {
-        // Bricks without a valid probe read as zeros in every format (they are not stored).
+        // Bricks a file leaves out (storedBricks) read as zeros in every format.
         if (!stored[g.brickOf(i, j, k)]) continue;
         const float* coefficients = v.probe(g.linearIndex(i, j, k));
         for (int face = 0; face < 6; ++face) {

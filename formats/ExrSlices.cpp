@@ -12,6 +12,7 @@
 #include "basis/BasisRegistry.h"
 #include "common/Error.h"
 #include "formats/AtomicFile.h"
+#include "formats/BrickAtlas.h"
 #include "formats/HalfFloat.h"
 #include "formats/VolumeHeader.h"
 #include "formats/VolumeLayout.h"
@@ -22,7 +23,7 @@ namespace baker {
 namespace {
 
 constexpr const char* kManifest = "manifest.json";
-constexpr const char* kFormatName = "baker-exr-slices";
+constexpr const char* kFormatName = kExrFormatName;
 
 std::string sliceName(int k) { return fmt::format("z{:04}.exr", k); }
 
@@ -39,11 +40,20 @@ bool alwaysFloat(const VolumeGrid& g) {
   return g.kind == VolumeGrid::Kind::ProbeState || g.kind == VolumeGrid::Kind::ProbeOffset;
 }
 
+// Where the slices' texels sit in the grid: the grid itself (slice k is z = k), or a brick atlas.
+struct SliceLayout {
+  const ProbeGrid& grid;
+  const BrickAtlas* atlas;
+
+  Eigen::Vector3i texels() const { return atlas ? atlas->texels() : grid.dims; }
+  std::int64_t probeAt(int i, int j, int k) const { return atlas ? atlas->probeAt(grid, i, j, k) : grid.linearIndex(i, j, k); }
+};
+
 nlohmann::json manifestOf(const Volume& v, const Basis& basis, ExrPrecision precision, double scale,
-                          const std::vector<std::string>& channels) {
+                          const std::vector<std::string>& channels, const SliceLayout& layout) {
   const nlohmann::json metadata = describingMetadataJson(v, basis);
   std::vector<std::string> slices;
-  for (int k = 0; k < v.grid.dims.z(); ++k) slices.push_back(sliceName(k));
+  for (int k = 0; k < layout.texels().z(); ++k) slices.push_back(sliceName(k));
   const ProbeGrid& g = v.grid;
   return {{"format", kFormatName},
           {"format_version", kVolumeFormatVersion},
@@ -61,12 +71,24 @@ nlohmann::json manifestOf(const Volume& v, const Basis& basis, ExrPrecision prec
           {"metadata", metadata}};
 }
 
-bool replaceableVolumeDirectory(const std::string& path) { return isExrSliceDirectory(path); }
+}  // namespace
+
+bool replaceableExrDirectory(const std::string& path) {
+  if (!isExrSliceDirectory(path)) return false;
+  try {
+    std::ifstream in(std::filesystem::path(path) / kManifest);
+    return nlohmann::json::parse(in).value("format", "") == kFormatName;
+  } catch (const nlohmann::json::exception&) {
+    return false;
+  }
+}
+
+namespace {
 
 // Opens slice k, named `name` in the manifest, after checking that it is a file in the volume's
 // directory holding slice k at the grid's size (InputError naming the slice otherwise).
 std::unique_ptr<ImageReader> openSlice(const std::filesystem::path& dir, const std::string& name, int k,
-                                       const ProbeGrid& g, const std::string& manifestPath) {
+                                       const Eigen::Vector3i& texels, const std::string& manifestPath) {
   if (name.find('/') != std::string::npos || name.find('\\') != std::string::npos)
     throw InputError(fmt::format("{}: slice name \"{}\" must be a file in the volume's directory", manifestPath, name));
   const std::string slicePath = (dir / name).string();
@@ -74,9 +96,9 @@ std::unique_ptr<ImageReader> openSlice(const std::filesystem::path& dir, const s
   if (!std::filesystem::is_regular_file(slicePath, ec)) throw InputError(fmt::format("{}: slice file is missing", slicePath));
   auto image = std::make_unique<ImageReader>(slicePath);
   const ImageHeader& spec = image->header();
-  if (spec.width != g.dims.x() || spec.height != g.dims.y() || spec.depth != 1)
+  if (spec.width != texels.x() || spec.height != texels.y() || spec.depth != 1)
     throw InputError(fmt::format("{}: {} × {} pixels, expected {} × {}", slicePath, spec.width, spec.height,
-                                 g.dims.x(), g.dims.y()));
+                                 texels.x(), texels.y()));
   const int holds = image->intAttribute("baker.slice", -1);
   if (holds != k) throw InputError(fmt::format("{}: holds slice {}, but the manifest lists it as slice {}", slicePath, holds, k));
   return image;
@@ -86,17 +108,20 @@ std::unique_ptr<ImageReader> openSlice(const std::filesystem::path& dir, const s
 
 bool isExrSliceDirectory(const std::string& path) { return directoryHolds(path, kManifest); }
 
-void writeExrSlices(const Volume& volume, const Basis& basis, const std::string& directory, ExrPrecision precision) {
+void writeSliceSet(const Volume& volume, const Basis& basis, const std::string& directory, ExrPrecision precision,
+                   const BrickAtlas* atlas, const nlohmann::json& extra) {
   requireFiniteVolume(volume);
   const std::vector<VolumeGrid> grids = volumeGrids(basis, volume.visibilityPerProbe, !volume.states.empty());
   const double scale = coefficientScale(volume, precision);
   const PixelType storage = precision == ExrPrecision::Half ? PixelType::Half : PixelType::Float;
-  const std::vector<bool> stored = storedBricks(volume);
+  // An atlas holds exactly its bricks; the grid's own layout the bricks a file keeps.
+  const std::vector<bool> stored = atlas ? std::vector<bool>() : storedBricks(volume);
+  const SliceLayout layout{volume.grid, atlas};
 
   ImageToWrite slice;
   slice.format = "openexr";
-  slice.width = volume.grid.dims.x();
-  slice.height = volume.grid.dims.y();
+  slice.width = layout.texels().x();
+  slice.height = layout.texels().y();
   slice.pixelType = PixelType::Float;
   slice.compression = "zip";
   std::vector<std::pair<const VolumeGrid*, int>> channels;
@@ -106,7 +131,9 @@ void writeExrSlices(const Volume& volume, const Basis& basis, const std::string&
       slice.channelNames.push_back(componentName(g, c));
       slice.channelStorage.push_back(alwaysFloat(g) ? PixelType::Float : storage);
     }
-  const nlohmann::json manifest = manifestOf(volume, basis, precision, scale, slice.channelNames);
+  nlohmann::json manifest = manifestOf(volume, basis, precision, scale, slice.channelNames, layout);
+  if (atlas) manifest["atlas"] = {{"slots", {atlas->slots.x(), atlas->slots.y(), atlas->slots.z()}}, {"bricks", atlas->bricks}};
+  manifest.merge_patch(extra);
   for (const auto& [key, value] : manifest["metadata"].items())
     slice.textAttributes.push_back({key, value.get<std::string>()});
   slice.textAttributes.push_back(
@@ -119,26 +146,34 @@ void writeExrSlices(const Volume& volume, const Basis& basis, const std::string&
   // fixed one keeps the same volume the same bytes.
   slice.textAttributes.push_back({"DateTime", "1970:01:01 00:00:00"});
 
-  AtomicDirectory out(directory, replaceableVolumeDirectory);
   const ProbeGrid& g = volume.grid;
-  std::vector<float> pixels(std::size_t(g.dims.x()) * g.dims.y() * channels.size());
-  for (int k = 0; k < g.dims.z(); ++k) {
+  std::vector<float> pixels(std::size_t(slice.width) * slice.height * channels.size());
+  for (int k = 0; k < layout.texels().z(); ++k) {
     std::size_t n = 0;
-    for (int j = 0; j < g.dims.y(); ++j)
-      for (int i = 0; i < g.dims.x(); ++i) {
-        const std::int64_t p = g.linearIndex(i, j, k);
-        const bool keep = stored[g.brickOf(i, j, k)];
+    for (int j = 0; j < slice.height; ++j)
+      for (int i = 0; i < slice.width; ++i) {
+        const std::int64_t p = layout.probeAt(i, j, k);
+        const bool keep = p >= 0 && (atlas || stored[std::size_t(g.brickOf(i, j, k))]);
         for (const auto& [grid, c] : channels)
           pixels[n++] = keep ? float(gridValue(volume, *grid, c, p) / (scaled(*grid) ? scale : 1.0)) : 0.0f;
       }
     slice.intAttributes = {{"baker.slice", k}};
     slice.pixels = pixels.data();
-    const std::string path = (std::filesystem::path(out.temporaryPath()) / sliceName(k)).string();
+    const std::string path = (std::filesystem::path(directory) / sliceName(k)).string();
     std::string error;
     if (!writeImage(slice, path, &error))
       throw InputError(fmt::format("{}: cannot write slice {}: {}", directory, k, error));
   }
-  std::ofstream(std::filesystem::path(out.temporaryPath()) / kManifest) << manifest.dump(2) << "\n";
+  const std::filesystem::path manifestPath = std::filesystem::path(directory) / kManifest;
+  std::ofstream file(manifestPath);
+  file << manifest.dump(2) << "\n";
+  file.close();
+  if (!file) throw InputError(fmt::format("{}: cannot write", manifestPath.string()));
+}
+
+void writeExrSlices(const Volume& volume, const Basis& basis, const std::string& directory, ExrPrecision precision) {
+  AtomicDirectory out(directory, replaceableExrDirectory);
+  writeSliceSet(volume, basis, out.temporaryPath(), precision, nullptr, nlohmann::json::object());
   out.commit();
 }
 
@@ -149,18 +184,36 @@ struct Manifest {
   VolumeHeader header;
   std::vector<std::string> slices, channelNames;
   double scale = 1.0;
+  std::optional<BrickAtlas> atlas;  // a level of an adaptive volume
 };
 
-Manifest readManifest(const std::string& path, const std::string& manifestPath) {
-  Manifest manifest;
+// The atlas a level's manifest gives, checked: bricks in increasing order, slots as
+// BrickAtlas::of lays them out (so that a damaged count cannot ask for huge slices).
+BrickAtlas readAtlas(const nlohmann::json& a, const std::string& manifestPath) {
+  const auto slots = a.at("slots").get<std::vector<int>>();
+  const auto bricks = a.at("bricks").get<std::vector<std::int64_t>>();
+  for (std::size_t n = 1; n < bricks.size(); ++n)
+    if (bricks[n] <= bricks[n - 1])
+      throw InputError(fmt::format("{}: \"atlas\".\"bricks\" must be in increasing order", manifestPath));
+  BrickAtlas atlas = BrickAtlas::of(bricks);
+  if (slots.size() != 3 || Eigen::Vector3i(slots[0], slots[1], slots[2]) != atlas.slots)
+    throw InputError(fmt::format("{}: \"atlas\".\"slots\" must be [{}, {}, {}] for {} bricks", manifestPath,
+                                 atlas.slots.x(), atlas.slots.y(), atlas.slots.z(), bricks.size()));
+  return atlas;
+}
+
+nlohmann::json parseManifest(const std::string& path, const std::string& manifestPath) {
   std::ifstream in(manifestPath);
   if (!in) throw InputError(fmt::format("{}: no {} (not an EXR slice volume)", path, kManifest));
-  nlohmann::json m;
   try {
-    m = nlohmann::json::parse(in);
+    return nlohmann::json::parse(in);
   } catch (const nlohmann::json::exception& e) {
     throw InputError(fmt::format("{}: not valid JSON: {}", manifestPath, oneLine(e.what())));
   }
+}
+
+Manifest readManifest(const nlohmann::json& m, const std::string& manifestPath) {
+  Manifest manifest;
   try {
     if (m.at("format") != kFormatName)
       throw InputError(fmt::format("{}: \"format\" is {}, expected \"{}\"", manifestPath, m.at("format").dump(), kFormatName));
@@ -179,6 +232,10 @@ Manifest readManifest(const std::string& path, const std::string& manifestPath) 
     manifest.slices = m.at("slices").get<std::vector<std::string>>();
     manifest.channelNames = m.at("channels").get<std::vector<std::string>>();
     for (const auto& [key, value] : m.at("metadata").items()) manifest.header.text.push_back({key, value.get<std::string>()});
+    if (m.contains("atlas")) {
+      manifest.atlas = readAtlas(m.at("atlas"), manifestPath);
+      manifest.header.heldBricks = manifest.atlas->bricks;
+    }
   } catch (const nlohmann::json::exception& e) {
     throw InputError(fmt::format("{}: {}", manifestPath, oneLine(e.what())));
   }
@@ -191,10 +248,10 @@ Manifest readManifest(const std::string& path, const std::string& manifestPath) 
 void readSlice(const std::filesystem::path& dir, const Manifest& manifest, int k, const std::string& manifestPath,
                const std::vector<VolumeGrid>& grids, std::vector<float>& pixels, Volume& volume) {
   const std::vector<std::string>& slices = manifest.slices;
-  const ProbeGrid& g = manifest.header.grid;
+  const SliceLayout layout{manifest.header.grid, manifest.atlas ? &*manifest.atlas : nullptr};
   const double scale = manifest.scale;
   const std::string slicePath = (dir / slices[k]).string();
-  const std::unique_ptr<ImageReader> image = openSlice(dir, slices[k], k, g, manifestPath);
+  const std::unique_ptr<ImageReader> image = openSlice(dir, slices[k], k, layout.texels(), manifestPath);
   const ImageHeader& spec = image->header();
   std::vector<std::pair<int, std::pair<const VolumeGrid*, int>>> sources;  // channel index → grid component
   for (const VolumeGrid& grid : grids)
@@ -207,10 +264,10 @@ void readSlice(const std::filesystem::path& dir, const Manifest& manifest, int k
   pixels.resize(std::size_t(spec.width) * spec.height * spec.channels);
   if (!image->readFloats(spec.channels, pixels.data()))
     throw InputError(fmt::format("{}: cannot read the pixels: {}", slicePath, image->error()));
-  for (int j = 0; j < g.dims.y(); ++j)
-    for (int i = 0; i < g.dims.x(); ++i) {
-      const float* px = pixels.data() + (std::size_t(j) * g.dims.x() + i) * spec.channels;
-      const std::int64_t p = g.linearIndex(i, j, k);
+  for (int j = 0; j < spec.height; ++j)
+    for (int i = 0; i < spec.width; ++i) {
+      const float* px = pixels.data() + (std::size_t(j) * spec.width + i) * spec.channels;
+      const std::int64_t p = layout.probeAt(i, j, k);
       for (const auto& [channel, target] : sources) {
         const auto& [grid, c] = target;
         float value = px[channel];
@@ -221,37 +278,74 @@ void readSlice(const std::filesystem::path& dir, const Manifest& manifest, int k
           value = float(double(value) * scale);
         }
         // A part read as its own bricks only skips the others, which must be zero (Invalid) as the
-        // part's writer left them.
-        if (!setGridValue(volume, *grid, c, p, value) && value != 0.0f)
-          throw InputError(fmt::format("{}: probe at ({}, {}) has {} = {}, outside the bricks of its shard {} (a part "
-                                       "stores zeros there)",
-                                       slicePath, i, j, componentName(*grid, c), value, shardName(*volume.shard)));
+        // part's writer left them; so must an atlas texel that holds no probe.
+        if ((p < 0 || !setGridValue(volume, *grid, c, p, value)) && value != 0.0f)
+          throw InputError(fmt::format("{}: texel ({}, {}) has {} = {}, {} (stored as zeros)", slicePath, i, j,
+                                       componentName(*grid, c), value,
+                                       p < 0            ? std::string("but holds no probe of the atlas")
+                                       : volume.shard ? fmt::format("outside the bricks of its shard {}", shardName(*volume.shard))
+                                                      : std::string("outside the bricks the volume holds")));
       }
     }
 }
 
 }  // namespace
 
-Volume readExrSlices(const std::string& path, PartReading parts) {
-  std::filesystem::path dir = path;
-  if (dir.filename() == kManifest) dir = dir.parent_path();
+namespace {
+
+// The slice set in `dir` whose manifest is `m`.
+Volume readSliceSet(const std::filesystem::path& dir, const nlohmann::json& m, const std::string& path,
+                    PartReading parts) {
   const std::string manifestPath = (dir / kManifest).string();
-  const Manifest manifest = readManifest(path, manifestPath);
-  const ProbeGrid& g = manifest.header.grid;
-  if (g.dims.z() < 0 || manifest.slices.size() != std::size_t(g.dims.z()))
-    throw InputError(fmt::format("{}: {} slices listed for {} probes along z", manifestPath, manifest.slices.size(),
-                                 g.dims.z()));
+  const Manifest manifest = readManifest(m, manifestPath);
+  const SliceLayout layout{manifest.header.grid, manifest.atlas ? &*manifest.atlas : nullptr};
+  const int depth = layout.texels().z();
+  if (depth < 0 || manifest.slices.size() != std::size_t(depth))
+    throw InputError(fmt::format("{}: {} slices listed for {} texels along z", manifestPath, manifest.slices.size(), depth));
   // Every slice is checked against the manifest before anything is allocated for it: the
   // manifest's sizes are only believed once the images agree with them.
-  for (int k = 0; k < g.dims.z(); ++k) openSlice(dir, manifest.slices[k], k, g, manifestPath);
+  for (int k = 0; k < depth; ++k) openSlice(dir, manifest.slices[k], k, layout.texels(), manifestPath);
   Volume volume = manifest.header.emptyVolume(manifestPath, parts);
 
   const std::unique_ptr<Basis> basis = makeBasis(volume.basisName);
   const std::vector<VolumeGrid> grids = volumeGrids(*basis, volume.visibilityPerProbe, manifest.header.hasProbeStates);
   std::vector<float> pixels;
-  for (int k = 0; k < g.dims.z(); ++k) readSlice(dir, manifest, k, manifestPath, grids, pixels, volume);
+  for (int k = 0; k < depth; ++k) readSlice(dir, manifest, k, manifestPath, grids, pixels, volume);
   requireFiniteValues(volume, path);
   return volume;
+}
+
+}  // namespace
+
+std::filesystem::path exrVolumeDirectory(const std::string& path) {
+  std::filesystem::path dir = path;
+  return dir.filename() == kManifest ? dir.parent_path() : dir;
+}
+
+Volume readExrSlices(const std::string& path, PartReading parts) {
+  const std::filesystem::path dir = exrVolumeDirectory(path);
+  const std::string manifestPath = (dir / kManifest).string();
+  const nlohmann::json m = parseManifest(path, manifestPath);
+  if (m.contains(kLevelsManifestKey))
+    throw InputError(fmt::format("{}: an adaptive volume of {} levels; this command reads a uniform volume only "
+                                 "(docs/ADAPTIVE.md says which commands read levels)",
+                                 path, m[kLevelsManifestKey].size()));
+  if (m.contains("atlas"))
+    throw InputError(fmt::format("{}: one level of an adaptive volume; read the volume's directory, which holds "
+                                 "every level", path));
+  return readSliceSet(dir, m, path, parts);
+}
+
+nlohmann::json readExrManifest(const std::string& path) {
+  const std::filesystem::path dir = exrVolumeDirectory(path);
+  return parseManifest(path, (dir / kManifest).string());
+}
+
+Volume readAtlasSliceSet(const std::string& directory, const nlohmann::json& manifest) {
+  if (!manifest.contains("atlas"))
+    throw InputError(fmt::format("{}: \"atlas\" is missing (a level's bricks)",
+                                 (std::filesystem::path(directory) / kManifest).string()));
+  return readSliceSet(directory, manifest, directory, PartReading::EveryProbe);
 }
 
 }  // namespace baker

@@ -1,7 +1,10 @@
 #pragma once
+#include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "basis/Basis.h"
+#include "formats/BrickAtlas.h"
 #include "formats/VolumeHeader.h"
 #include "volume/Volume.h"
 
@@ -27,5 +30,25 @@ Volume readExrSlices(const std::string& path, PartReading parts = PartReading::E
 
 // Whether `path` is a directory with a manifest.json of EXR slices.
 bool isExrSliceDirectory(const std::string& path);
+// Whether it is one this tool wrote (its manifest's "format" says so): what a writer may replace.
+bool replaceableExrDirectory(const std::string& path);
+
+// Every EXR manifest's "format".
+constexpr const char* kExrFormatName = "baker-exr-slices";
+
+// What the levels of an adaptive volume are made of (ExrLevels.h). The manifest key of an
+// adaptive volume's directory listing its levels' directories.
+constexpr const char* kLevelsManifestKey = "levels";
+// Writes `volume`'s slice set into the existing `directory`: its probes where `atlas` packs its
+// bricks (null: slice k is z = k, the bricks a file keeps), `extra` added to its manifest.
+void writeSliceSet(const Volume& volume, const Basis& basis, const std::string& directory, ExrPrecision precision,
+                   const BrickAtlas* atlas, const nlohmann::json& extra);
+// The directory of the EXR volume at `path` (the directory, or its manifest.json).
+std::filesystem::path exrVolumeDirectory(const std::string& path);
+// The manifest of the EXR volume at `path` (a directory or its manifest.json), parsed only.
+nlohmann::json readExrManifest(const std::string& path);
+// Reads the slice set of one level in `directory`, whose parsed manifest.json is `manifest`: its
+// bricks as the manifest's atlas lists them.
+Volume readAtlasSliceSet(const std::string& directory, const nlohmann::json& manifest);
 
 }  // namespace baker

@@ -122,7 +122,7 @@ EngineExport writeThreeJsProbeGrid(const Volume& volume, const Basis& basis, con
   for (int k = 0; k < g.dims.z(); ++k)
     for (int j = 0; j < g.dims.y(); ++j)
       for (int i = 0; i < g.dims.x(); ++i) {
-        // Bricks without a valid probe read as zeros in every format (they are not stored).
+        // Bricks a file leaves out (storedBricks) read as zeros in every format.
         if (!stored[g.brickOf(i, j, k)]) continue;
         const std::int64_t p = g.linearIndex(i, j, k);
         radianceOf(volume, basis, p, &radiance[p * kValuesPerProbe]);

@@ -12,8 +12,8 @@
 #include "formats/VolumeHeader.h"
 #include "formats/VolumeLayout.h"
 #include "formats/VolumeMetadata.h"
+#include "formats/LevelChecks.h"
 #include "volume/LevelGrids.h"
-#include "volume/MemoryEstimate.h"
 
 namespace baker {
 namespace {
@@ -128,17 +128,6 @@ std::vector<std::int64_t> bricksInFile(openvdb::io::File& file, const std::strin
   return bricks;
 }
 
-// Level `level`'s grid from the metadata, checked to lie on the lattice LevelGrids.h lays out.
-ProbeGrid nestedGrid(const openvdb::MetaMap& meta, int level, const ProbeGrid& parent, const std::string& path) {
-  const std::string key = fmt::format("baker.level{}.", level);
-  const ProbeGrid grid = levelGrid(meta, key, path);
-  if (!nestsIn(grid, parent))
-    throw InputError(fmt::format("{}: {}origin and spacing do not nest in level {} (each level has a third of the "
-                                 "spacing of the one above, its probes on the same lattice)",
-                                 path, key, level - 1));
-  return grid;
-}
-
 // A uniform volume from its open file.
 Volume readUniform(openvdb::io::File& file, const openvdb::MetaMap& meta, const std::string& path, PartReading parts) {
   const VolumeHeader header = vdbHeader(file, meta, path);
@@ -158,18 +147,14 @@ AdaptiveVolume readLevelsOf(openvdb::io::File& file, const openvdb::MetaMap& met
   VolumeHeader header = vdbHeader(file, meta, path);
   if (!header.hasProbeStates) throw InputError(fmt::format("{}: grid 'probe_state' is missing", path));
   const std::unique_ptr<Basis> basis = makeBasis(header.basisName);
-  double held = 0.0;
+  LevelChecks checks(*basis, path);
+  checks.margin(volume.marginCells, "baker.margin_cells");
   for (int level = 0; level < levels; ++level) {
-    if (level > 0) header.grid = nestedGrid(meta, level, header.grid, path);
-    const Eigen::Vector3i& d = header.grid.dims;
-    if (d.minCoeff() <= 0 || d.maxCoeff() > kMaxProbesPerAxis || double(header.grid.brickCount()) > kMaxLevelBricks)
-      throw InputError(fmt::format("{}: level {}'s dims ({}, {}, {}) are not a valid grid size", path, level, d.x(), d.y(), d.z()));
+    const std::string key = level == 0 ? "baker." : fmt::format("baker.level{}.", level);
+    if (level > 0) header.grid = levelGrid(meta, key, path);
+    checks.grid(level, header.grid, key);
     header.heldBricks = bricksInFile(file, levelGridPrefix(level) + "probe_state", header.grid, path);
-    held += double(header.heldBricks->size()) * kBrickSize * kBrickSize * kBrickSize;
-    if (held > kMaxProbesRead || volumeMemoryBytes(held, *basis) / 2 > double(physicalMemoryBytes()))
-      throw InputError(fmt::format("{}: levels 0 to {} hold up to {:.3g} probes, more than a volume may hold or this "
-                                   "machine's memory",
-                                   path, level, held));
+    checks.held(level, header.heldBricks->size());
     volume.levels.push_back(header.emptyVolume(path));
     if (level > 0) volume.levels.back().settings.clear();
     readLevelGrids(file, path, levelGridPrefix(level), true, volume.levels.back());

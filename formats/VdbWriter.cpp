@@ -151,8 +151,9 @@ void writeLevels(const std::vector<LevelGrids>& levels, const Basis& basis, cons
   out.commit();
 }
 
-// The bricks a level holds: all of them are stored, even one whose probes are all Invalid, so
-// that a reader holds the same bricks (and samples the same levels) as the bake did.
+// The bricks a level holds: all of them are stored (the bake kept only those worth storing,
+// volume/StoredBricks.h), so that a reader holds the same bricks, and samples the same levels, as
+// the bake did.
 std::vector<bool> heldBricks(const Volume& level) {
   std::vector<bool> held(std::size_t(level.grid.brickCount()));
   for (std::size_t b = 0; b < held.size(); ++b) held[b] = level.rows.holdsBrick(std::int64_t(b));

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "volume/ProbeGrid.h"
+#include "volume/StoredBricks.h"
 
 namespace baker {
 
@@ -71,16 +72,7 @@ void prepareForReading(Volume& v, bool hasProbeStates) {
 }
 
 std::vector<bool> storedBricks(const Volume& v) {
-  const Eigen::Vector3i bricks = v.grid.brickCounts();
-  const std::size_t count = std::size_t(bricks.x()) * bricks.y() * bricks.z();
-  if (v.states.empty()) return std::vector<bool>(count, true);
-  std::vector<bool> stored(count, false);
-  for (int k = 0; k < v.grid.dims.z(); ++k)
-    for (int j = 0; j < v.grid.dims.y(); ++j)
-      for (int i = 0; i < v.grid.dims.x(); ++i)
-        if (const std::int64_t row = v.rows.row(v.grid, i, j, k); row >= 0 && v.states[row] != ProbeState::Invalid)
-          stored[v.grid.brickOf(i, j, k)] = true;
-  return stored;
+  return v.shard ? bricksWithAProbeOutsideGeometry(v) : bricksWorthStoring(v);
 }
 
 void requireFiniteVolume(const Volume& v) {

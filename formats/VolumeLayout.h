@@ -41,8 +41,9 @@ float gridValue(const Volume& volume, const VolumeGrid& grid, int component, std
 // zeros, probes Invalid (what a sparse file's missing bricks mean) when the file has probe states.
 void prepareForReading(Volume& volume, bool hasProbeStates);
 
-// Bricks of 8³ probes (OpenVDB leaves) that hold at least one probe that is not Invalid: sparse
-// formats store only these. All bricks when the volume has no probe states.
+// Bricks of 8³ probes (OpenVDB leaves) that sparse formats store (the others read as zeros, state
+// Invalid): a whole volume's bricksWorthStoring; a shard's part, whose neighbours are not baked
+// yet, keeps the bricks holding a probe that is not Invalid.
 std::vector<bool> storedBricks(const Volume& volume);
 
 // Writers refuse to store a NaN or an infinity (std::runtime_error: it would be a bug upstream).

@@ -6,6 +6,7 @@
 
 #include "common/Error.h"
 #include "formats/BevyIrradianceVolume.h"
+#include "formats/ExrLevels.h"
 #include "formats/ExrSlices.h"
 #include "formats/ThreeJsProbeGrid.h"
 #include "formats/VdbReader.h"
@@ -41,7 +42,9 @@ Volume readVolume(const std::string& path, PartReading parts) {
 }
 
 AdaptiveVolume readLevels(const std::string& path) {
-  if (volumeFormatOf(path) == "vdb") return readAdaptiveVdb(path);
+  const std::string format = volumeFormatOf(path);
+  if (format == "vdb") return readAdaptiveVdb(path);
+  if (format == "exr") return readAdaptiveExrSlices(path);
   AdaptiveVolume volume;
   volume.levels.push_back(readVolume(path));
   return volume;

@@ -8,6 +8,7 @@
 #include "common/Error.h"
 #include "formats/AtomicFile.h"
 #include "formats/BevyIrradianceVolume.h"
+#include "formats/ExrLevels.h"
 #include "formats/ThreeJsProbeGrid.h"
 #include "formats/VdbWriter.h"
 
@@ -117,16 +118,19 @@ EngineExport writeVolume(const Volume& volume, const Basis& basis, const VolumeO
 }
 
 void requireLevelsWritable(const VolumeOutput& output, int levels) {
-  if (levels > 1 && output.format != VolumeFormat::Vdb)
-    throw SettingError("format", fmt::format("{}: an adaptive volume's levels are written to a .vdb file only, so far "
-                                             "(docs/ADAPTIVE.md)",
+  if (levels > 1 && output.format != VolumeFormat::Vdb && output.format != VolumeFormat::Exr)
+    throw SettingError("format", fmt::format("{}: an adaptive volume's levels are written to a .vdb file or EXR slices "
+                                             "only, so far (docs/ADAPTIVE.md)",
                                              volumeFormatName(output.format)));
 }
 
 EngineExport writeLevels(const AdaptiveVolume& volume, const Basis& basis, const VolumeOutput& output) {
   if (volume.levels.size() == 1) return writeVolume(volume.levels.front(), basis, output);
   requireLevelsWritable(output, int(volume.levels.size()));
-  writeAdaptiveVdb(volume, basis, output.path);
+  if (output.format == VolumeFormat::Exr)
+    writeAdaptiveExrSlices(volume, basis, output.path, output.precision);
+  else
+    writeAdaptiveVdb(volume, basis, output.path);
   return {};
 }
 

@@ -2,6 +2,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
 #include <random>
 
 #include "bake/AdaptiveBaker.h"
@@ -10,13 +12,16 @@
 #include "basis/BasisRegistry.h"
 #include "common/Error.h"
 #include "decoders/baker_irradiance.h"
+#include "formats/ExrLevels.h"
 #include "formats/VdbReader.h"
+#include "formats/VolumeReader.h"
 #include "formats/VdbWriter.h"
 #include "scene/GltfLoader.h"
 #include "tests/BakerProcess.h"
 #include "tests/GltfTestAssets.h"
 #include "tests/OnThreads.h"
 #include "tests/TestData.h"
+#include "volume/StoredBricks.h"
 
 namespace baker {
 namespace {
@@ -286,6 +291,147 @@ TEST_F(AdaptiveBake, VdbHoldsEveryLevel) {
   }
 }
 
+// Each level as its own EXR slice set, its bricks packed in an atlas: float slices read back
+// exactly, half ones within half's rounding; the same bytes again; uniform readers refuse it.
+TEST_F(AdaptiveBake, ExrSlicesHoldEveryLevel) {
+  const std::string dir = test::makeTempDir("AdaptiveExr");
+  writeAdaptiveExrSlices(*volume_, *basis_, dir + "/float", ExrPrecision::Float);
+  writeAdaptiveExrSlices(*volume_, *basis_, dir + "/half", ExrPrecision::Half);
+  const AdaptiveVolume read = readLevels(dir + "/float");
+  const AdaptiveVolume half = readLevels(dir + "/half/manifest.json");
+  ASSERT_EQ(read.levels.size(), 3u);
+  ASSERT_EQ(half.levels.size(), 3u);
+  EXPECT_EQ(read.marginCells, 1);
+  for (std::size_t l = 0; l < 3; ++l) {
+    const Volume& a = volume_->levels[l];
+    for (const Volume* b : {&read.levels[l], &half.levels[l]}) {
+      EXPECT_EQ(a.grid.dims, b->grid.dims);
+      EXPECT_EQ(a.grid.origin, b->grid.origin);
+      EXPECT_EQ(a.grid.spacing, b->grid.spacing);
+      EXPECT_EQ(a.rows.bricks(), b->rows.bricks()) << "level " << l;
+      EXPECT_EQ(a.states, b->states) << "level " << l;
+    }
+    EXPECT_EQ(a.coefficients, read.levels[l].coefficients) << "level " << l;
+    EXPECT_EQ(a.visibility, read.levels[l].visibility) << "level " << l;
+    for (std::size_t i = 0; i < a.coefficients.size(); ++i)
+      ASSERT_NEAR(half.levels[l].coefficients[i], a.coefficients[i], std::abs(a.coefficients[i]) / 1024.0 + 1e-6);
+  }
+  for (const Vector3d& at : {Vector3d(3.3, 0.4, -7.1), Vector3d(-20, 12, 20), Vector3d(0.5, 59.5, 0.5)})
+    EXPECT_EQ(irradiance(read, at, Vector3d::UnitY()), irradiance(*volume_, at, Vector3d::UnitY()));
+  writeAdaptiveExrSlices(read, *basis_, dir + "/again", ExrPrecision::Float);
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(dir + "/float")) {
+    if (!entry.is_regular_file()) continue;
+    const std::string relative = std::filesystem::relative(entry.path(), dir + "/float").string();
+    std::ifstream first(entry.path(), std::ios::binary), second(dir + "/again/" + relative, std::ios::binary);
+    ASSERT_TRUE(second) << relative;
+    EXPECT_TRUE(std::equal(std::istreambuf_iterator<char>(first), {}, std::istreambuf_iterator<char>(second), {})) << relative;
+  }
+  const auto refused = [&](const std::string& path, const std::string& needle) {
+    try {
+      readVolume(path);
+      ADD_FAILURE() << path << " was read as a uniform volume";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+  };
+  refused(dir + "/float", "an adaptive volume of 3 levels");
+  refused(dir + "/float/level1", "one level of an adaptive volume");
+}
+
+// A level's atlas that lies: bricks out of order, the wrong slot counts, or a value where the
+// atlas holds no probe.
+TEST_F(AdaptiveBake, ExrLevelDamageIsRefused) {
+  const std::string dir = test::makeTempDir("AdaptiveExrDamage");
+  const auto damaged = [&](const std::string& name, const std::function<void(nlohmann::json&)>& change,
+                           const std::string& needle) {
+    const std::string path = dir + "/" + name;
+    writeAdaptiveExrSlices(*volume_, *basis_, path, ExrPrecision::Float);
+    const std::string manifestPath = path + "/level2/manifest.json";
+    nlohmann::json m = nlohmann::json::parse(std::ifstream(manifestPath));
+    change(m);
+    std::ofstream(manifestPath) << m.dump();
+    try {
+      readLevels(path);
+      ADD_FAILURE() << name << " was read";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << name << ": " << e.what();
+    }
+  };
+  damaged("order", [](nlohmann::json& m) { std::swap(m["atlas"]["bricks"][0], m["atlas"]["bricks"][1]); },
+          "must be in increasing order");
+  damaged("slots", [](nlohmann::json& m) { m["atlas"]["slots"][2] = 400; }, "\"atlas\".\"slots\" must be");
+  damaged("outside", [&](nlohmann::json& m) { m["atlas"]["bricks"].back() = volume_->levels[2].grid.brickCount(); },
+          "a brick of a level lies outside");
+  damaged("nest", [](nlohmann::json& m) { m["origin"][0] = m["origin"][0].get<double>() + 0.1; }, "do not nest in level 1");
+}
+
+// The bake keeps of each level only the bricks a file keeps (volume/StoredBricks.h), before finer
+// levels read it.
+TEST_F(AdaptiveBake, EveryHeldBrickIsWorthStoring) {
+  for (std::size_t l = 0; l < volume_->levels.size(); ++l) {
+    const Volume& level = volume_->levels[l];
+    const std::vector<bool> worth = bricksWorthStoring(level);
+    for (std::int64_t b = 0; b < level.grid.brickCount(); ++b)
+      EXPECT_EQ(worth[std::size_t(b)], level.rows.holdsBrick(b)) << "level " << l << " brick " << b;
+  }
+}
+
+// Bricks 0, 2 and 3 of a 4-brick row held (in the order 3, 0, 2), brick 3 dropped: every probe
+// kept has its values and state, brick 3's are not held.
+TEST(StoredBricks, KeepBricksKeepsEachProbesValues) {
+  Volume v;
+  v.grid.dims = {32, 5, 3};
+  v.grid.spacing = 1.0;
+  v.rows = ProbeRows(v.grid, {3, 0, 2});
+  v.coefficientsPerProbe = 2;
+  v.visibilityPerProbe = 1;
+  const std::int64_t rows = v.rows.count(v.grid);
+  for (std::int64_t r = 0; r < rows; ++r) {
+    v.coefficients.insert(v.coefficients.end(), {float(r), float(-r)});
+    v.visibility.push_back(float(r) / 2.0f);
+    v.states.push_back(ProbeState(r % 3));
+    v.offsets.push_back(Eigen::Vector3f(float(r), 0.0f, 1.0f));
+  }
+  const Volume kept = keepBricks(v, {true, true, true, false});
+  EXPECT_EQ(kept.rows.bricks(), (std::vector<std::int64_t>{0, 2}));
+  for (int k = 0; k < 3; ++k)
+    for (int j = 0; j < 5; ++j)
+      for (int i = 0; i < 32; ++i) {
+        const std::int64_t from = v.rows.row(v.grid, i, j, k), to = kept.rows.row(kept.grid, i, j, k);
+        if (i < 8 || (i >= 16 && i < 24)) {
+          ASSERT_GE(to, 0);
+          EXPECT_EQ(kept.coefficients[std::size_t(2 * to + 1)], v.coefficients[std::size_t(2 * from + 1)]);
+          EXPECT_EQ(kept.visibility[std::size_t(to)], v.visibility[std::size_t(from)]);
+          EXPECT_EQ(kept.states[std::size_t(to)], v.states[std::size_t(from)]);
+          EXPECT_EQ(kept.offsets[std::size_t(to)], v.offsets[std::size_t(from)]);
+        } else {
+          EXPECT_EQ(to, -1);
+        }
+      }
+  EXPECT_EQ(kept.coefficients.size(), std::size_t(2 * 2 * 8 * 5 * 3));
+
+  // A volume holding every probe (rows in grid order) keeps its bricks' probes the same way.
+  Volume whole = v;
+  whole.rows = ProbeRows();
+  const std::int64_t probes = whole.grid.probeCount();
+  whole.coefficients.resize(std::size_t(2 * probes));
+  whole.visibility.resize(std::size_t(probes));
+  whole.states.resize(std::size_t(probes));
+  whole.offsets.resize(std::size_t(probes));
+  for (std::int64_t p = 0; p < probes; ++p) whole.coefficients[std::size_t(2 * p)] = float(p);
+  const Volume some = keepBricks(whole, {false, true, false, true});
+  EXPECT_EQ(some.rows.bricks(), (std::vector<std::int64_t>{1, 3}));
+  for (int k = 0; k < 3; ++k)
+    for (int j = 0; j < 5; ++j)
+      for (int i = 0; i < 32; ++i) {
+        const std::int64_t to = some.rows.row(some.grid, i, j, k);
+        if ((i >= 8 && i < 16) || i >= 24)
+          EXPECT_EQ(some.coefficients[std::size_t(2 * to)], float(whole.grid.linearIndex(i, j, k)));
+        else
+          EXPECT_EQ(to, -1);
+      }
+}
+
 // A solid cube 40 m wide: the bricks of level 0 deep inside it are not placed.
 TEST(AdaptivePlacement, NothingDeepInsideClosedGeometry) {
   test::GltfBuilder gltf;
@@ -301,6 +447,59 @@ TEST(AdaptivePlacement, NothingDeepInsideClosedGeometry) {
   const AdaptivePlacement p = placeAdaptive(scene, tracer, coarsest, 1, 1, 1 << 20);
   EXPECT_EQ(p.deepInsideBricks, 27) << "the 3³ bricks that no face comes within a cell of";
   EXPECT_EQ(p.bricks[0].size(), 125u - 27u);
+}
+
+// A solid slab 24 m wide and deep, a small box sunk in the middle of it, and a panel 8 m above
+// (so that the grid has air over the slab). The sunk box places a brick of the finer level whose
+// probes, and their neighbours, all lie inside the slab: the bake drops it, and keeps every brick
+// with a probe in the air or next to one.
+TEST(AdaptiveBakeDrops, BricksInsideGeometryAwayFromAir) {
+  test::GltfBuilder gltf;
+  const std::vector<std::uint32_t> faces = {0, 2, 3, 0, 3, 1, 4, 5, 7, 4, 7, 6, 0, 1, 5, 0, 5, 4,
+                                            2, 6, 7, 2, 7, 3, 0, 4, 6, 0, 6, 2, 1, 3, 7, 1, 7, 5};
+  const auto box = [&](Vector3d lo, Vector3d hi) {
+    std::vector<float> corners;
+    for (int c = 0; c < 8; ++c)
+      corners.insert(corners.end(), {float(c & 1 ? hi.x() : lo.x()), float(c & 2 ? hi.y() : lo.y()),
+                                     float(c & 4 ? hi.z() : lo.z())});
+    gltf.node({{"mesh", gltf.mesh({{"POSITION", gltf.floats(corners, "VEC3")}}, gltf.indices(faces))}});
+  };
+  box({-12, -24, -12}, {12, 0, 12});
+  box({-1, -13, -1}, {1, -11, 1});
+  gltf.node({{"mesh", gltf.mesh({{"POSITION", gltf.floats({0, 8, 0, 1, 8, 0, 1, 8, 1, 0, 8, 1}, "VEC3")}},
+                                gltf.indices({0, 1, 2, 0, 2, 3}))}});
+  const Scene scene = loadGltf(gltf.write(test::makeTempDir("SunkBox"), "slab"));
+  const RayTracer tracer(scene);
+  const std::unique_ptr<Basis> basis = makeBasis("sh-l1");
+  const AdaptivePlacement placement = placeAdaptive(scene, tracer, makeProbeGrid(scene.bounds, 1.0, 1 << 20), 2, 1, 1 << 20);
+  BakeSettings settings;
+  settings.rays = 16;
+  settings.transport.probeValidity = true;
+  const AdaptiveVolume volume = bakeAdaptive(scene, tracer, *basis, placement, settings, nullptr);
+  const Volume& fine = volume.levels[1];
+  const ProbeGrid& g = fine.grid;
+  const Vector3d sunk = (Vector3d(0, -12, 0) - g.origin) / g.spacing;
+  const std::int64_t sunkBrick = g.brickOf(int(sunk.x()), int(sunk.y()), int(sunk.z()));
+  const std::vector<std::int64_t>& placed = placement.bricks[1];
+  ASSERT_TRUE(std::binary_search(placed.begin(), placed.end(), sunkBrick)) << "the sunk box places its brick";
+  EXPECT_FALSE(fine.rows.holdsBrick(sunkBrick)) << "a brick inside the slab, away from air, is dropped";
+  EXPECT_LT(fine.rows.bricks().size(), placed.size());
+  for (std::size_t l = 0; l < volume.levels.size(); ++l) {
+    const std::vector<bool> worth = bricksWorthStoring(volume.levels[l]);
+    for (std::int64_t b = 0; b < volume.levels[l].grid.brickCount(); ++b)
+      EXPECT_EQ(worth[std::size_t(b)], volume.levels[l].rows.holdsBrick(b)) << "level " << l << " brick " << b;
+  }
+  // Above the slab the finer level still covers the surface; the files hold what the bake holds.
+  const std::string dir = test::makeTempDir("SunkBoxFiles");
+  writeAdaptiveVdb(volume, *basis, dir + "/v.vdb");
+  writeAdaptiveExrSlices(volume, *basis, dir + "/v_exr", ExrPrecision::Float);
+  for (const std::string& path : {dir + "/v.vdb", dir + "/v_exr"}) {
+    const AdaptiveVolume read = readLevels(path);
+    for (std::size_t l = 0; l < volume.levels.size(); ++l) {
+      EXPECT_EQ(read.levels[l].rows.bricks(), volume.levels[l].rows.bricks()) << path << " level " << l;
+      EXPECT_EQ(read.levels[l].coefficients, volume.levels[l].coefficients) << path << " level " << l;
+    }
+  }
 }
 
 TEST(AdaptiveBadInput, ClearMessagesAndExitCode2) {
@@ -319,10 +518,10 @@ TEST(AdaptiveBadInput, ClearMessagesAndExitCode2) {
   rejected({"--placement", "adaptive", "--margin", "0"}, "--margin must be in 1..4 cells, got 0");
   rejected({"--placement", "sparse"}, "--placement must be uniform or adaptive");
   rejected({"--levels", "2"}, "--levels applies to --placement adaptive only");
-  rejected({"--placement", "adaptive", "--format", "exr", "--out", "x_exr"}, "levels are written to a .vdb file only");
+  rejected({"--placement", "adaptive", "--format", "bevy", "--out", "x_bevy"}, "levels are written to a .vdb file or EXR slices only");
   rejected({"--placement", "adaptive", "--shard", "0/2"}, "not cut into shards yet");
   rejected({"--placement", "adaptive", "--mpi"}, "--placement adaptive is not baked over MPI yet");
-  EXPECT_FALSE(std::filesystem::exists(dir + "/x_exr"));
+  EXPECT_FALSE(std::filesystem::exists(dir + "/x_bevy"));
 
   const test::ProcessResult bake =
       test::runBaker(dir, {scene, "--placement", "adaptive", "--levels", "2", "--rays", "8", "--out", "a.vdb", "--quiet"});

@@ -90,24 +90,29 @@ TEST(VolumeFormats, EveryBasisRoundTripsThroughVdbAndExr) {
   }
 }
 
-// Bricks without a valid probe are not stored: they read back as zeros, probes invalid.
-TEST(VolumeFormats, BricksWithoutValidProbesAreNotStored) {
+// Brick (1,0,0) holds only Invalid probes but touches brick (0,0,0)'s valid ones: an engine blends
+// them in the cells between, so it is stored. Brick (2,0,0) touches only Invalid probes: left out,
+// it reads as zeros.
+TEST(VolumeFormats, OnlyBricksAwayFromValidProbesAreLeftOut) {
   const std::string dir = test::makeTempDir("formats_sparse");
   const auto basis = makeBasis("sh-l1");
-  Volume v = randomVolume(*basis, 7, {12, 4, 4});
+  Volume v = randomVolume(*basis, 7, {20, 4, 4});
   for (int k = 0; k < 4; ++k)
     for (int j = 0; j < 4; ++j)
-      for (int i = 8; i < 12; ++i) v.states[v.grid.linearIndex(i, j, k)] = ProbeState::Invalid;  // brick (1,0,0)
+      for (int i = 8; i < 20; ++i) v.states[v.grid.linearIndex(i, j, k)] = ProbeState::Invalid;
   writeVdb(v, *basis, dir + "/v.vdb");
   writeExrSlices(v, *basis, dir + "/exr", ExrPrecision::Float);
   for (const std::string& path : {dir + "/v.vdb", dir + "/exr"}) {
     const Volume r = readVolume(path);
     for (int k = 0; k < 4; ++k)
       for (int j = 0; j < 4; ++j)
-        for (int i = 0; i < 12; ++i) {
+        for (int i = 0; i < 20; ++i) {
           const std::int64_t p = v.grid.linearIndex(i, j, k);
-          if (i < 8) {
-            ASSERT_EQ(r.coefficients[p * r.coefficientsPerProbe], v.coefficients[p * v.coefficientsPerProbe]) << path;
+          if (i < 16) {
+            ASSERT_EQ(r.states[p], v.states[p]) << path;
+            for (int c = 0; c < r.coefficientsPerProbe; ++c)
+              ASSERT_EQ(r.coefficients[p * r.coefficientsPerProbe + c], v.coefficients[p * v.coefficientsPerProbe + c])
+                  << path << " probe " << i << "," << j << "," << k;
             continue;
           }
           EXPECT_EQ(r.states[p], ProbeState::Invalid) << path;

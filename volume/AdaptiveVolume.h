@@ -9,8 +9,9 @@
 namespace baker {
 
 // A volume baked with adaptive placement: levels of probes nested over one box (LevelGrids.h),
-// coarsest first. Each level is a Volume on its own grid holding only the bricks placed at that
-// level (Volume::rows); level 0 holds every brick but those deep inside closed geometry. The
+// coarsest first. Each level is a Volume on its own grid holding only some bricks (Volume::rows):
+// those placed at that level (level 0: every brick but those deep inside closed geometry) that
+// are worth storing (StoredBricks.h). The
 // settings that made it are level 0's. A uniform bake is the case of one level.
 struct AdaptiveVolume {
   std::vector<Volume> levels;
