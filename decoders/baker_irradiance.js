@@ -306,3 +306,29 @@ export function blendProbes( values, neighbourhood, count ) {
 	}
 	return out;
 }
+
+// Adaptive volumes (docs/ADAPTIVE.md): levels, coarsest first, each { origin, spacing, dims,
+// bricksHeld } where bricksHeld[bx + Bx·(by + By·bz)] (B = ⌈dims / 8⌉) is non-zero when the level
+// holds brick (bx, by, bz) of 8³ probes, or null when it holds them all. The header's
+// finestLevelNeighbourhood: the finest level whose probes of non-zero weight around `position` are
+// all held; when none is (deep inside closed geometry), level 0 with its held probes' weights
+// renormalised, or all zero when it holds none. Returns { level, probe, weight }.
+function levelHoldsProbe( level, probe ) {
+	if ( ! level.bricksHeld ) return true;
+	const [ nx, ny ] = level.dims;
+	const i = probe % nx, j = Math.floor( probe / nx ) % ny, k = Math.floor( probe / ( nx * ny ) );
+	const bx = Math.ceil( nx / 8 ), by = Math.ceil( ny / 8 );
+	return level.bricksHeld[ Math.floor( i / 8 ) + bx * ( Math.floor( j / 8 ) + by * Math.floor( k / 8 ) ) ] !== 0;
+}
+
+export function finestLevelNeighbourhood( position, levels ) {
+	for ( let l = levels.length - 1; l > 0; -- l ) {
+		const n = probeNeighbourhood( position, levels[ l ].origin, levels[ l ].spacing, levels[ l ].dims );
+		if ( n.probe.every( ( p, c ) => n.weight[ c ] === 0 || levelHoldsProbe( levels[ l ], p ) ) ) return { level: l, ...n };
+	}
+	const n = probeNeighbourhood( position, levels[ 0 ].origin, levels[ 0 ].spacing, levels[ 0 ].dims );
+	n.probe.forEach( ( p, c ) => { if ( ! levelHoldsProbe( levels[ 0 ], p ) ) n.weight[ c ] = 0; } );
+	const total = n.weight.reduce( ( a, w ) => a + w, 0 );
+	if ( total > 0 && total !== 1 ) n.weight = n.weight.map( ( w ) => w / total );
+	return { level: 0, ...n };
+}

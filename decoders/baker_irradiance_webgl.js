@@ -7,7 +7,18 @@
 //   const texture = probeTexture( coefficients, visibility, decoder );  // { data, width, height, stride }
 //   fragment shader: BAKER_IRRADIANCE_GLSL, then bakerIrradiance( probe, n ), bakerVisibility( probe, n )
 //   uniforms: bakerUniforms( decoder, texture ): { name: { type, value } } as declared in the GLSL
+//
+// Adaptive volumes (several levels, each holding some bricks of 8³ probes):
+//   const pool = adaptiveTextures( levels, decoder );   // { probes, indirection, uniforms }
+//   fragment shader: BAKER_IRRADIANCE_GLSL, then await adaptiveGlsl(), then
+//   bakerAdaptiveIrradiance( position, n ), bakerAdaptiveVisibility( position, n )
+//   uniforms: bakerUniforms( decoder, pool.probes ) and pool.uniforms; bind pool.indirection as an
+//   R32UI 3D texture (texelFetch only) to bakerIndirection
 import { icosahedronVertex } from './baker_irradiance.js';
+
+// Levels an adaptive volume holds at most (shaders/baker_adaptive.glsl's BAKER_MAX_LEVELS).
+export const MAX_LEVELS = 4;
+const BRICK_PROBES = 512;
 
 // Texels per row of the probe texture: rows stay within every WebGL 2 implementation's limits.
 export const PROBE_TEXTURE_WIDTH = 1024;
@@ -243,3 +254,95 @@ vec3 bakerIrradiance( int probe, vec3 n ) {
 // Sky visibility of probe \`probe\` at unit normal n (channel 0's functions).
 float bakerVisibility( int probe, vec3 n ) { return bakerExpandPrimary( probe, bakerVisibilityOffset, 1, n ).x; }
 `;
+
+// The textures of an adaptive volume, from its levels (coarsest first), each { origin, spacing,
+// dims, bricks, coefficients, visibility }: `bricks` the held bricks' indices bx + Bx·(by + By·bz)
+// in increasing order (the EXR atlas's "bricks"), `coefficients` and `visibility` (or null) per
+// brick in that order, per probe i + 8·(j + 8·k) of the brick (the atlas slot's probes).
+// - probes: probeTexture of the pool, the levels' bricks one after the other, 512 probes each;
+// - indirection: { data: Uint32Array, width, height, depth }, texel (bx, by, brickZ + bz) = 1 +
+//   the pool slot of the level's brick, 0 where it holds none; levels stacked along z;
+// - uniforms: the levels' grids for the GLSL, { name: { type, value } }.
+export function adaptiveTextures( levels, decoder ) {
+	if ( levels.length < 1 || levels.length > MAX_LEVELS ) throw new Error( `${ levels.length } levels: an adaptive volume has 1 to ${ MAX_LEVELS }` );
+	const brickCounts = levels.map( ( l ) => l.dims.map( ( d ) => Math.ceil( d / 8 ) ) );
+	const width = Math.max( ...brickCounts.map( ( b ) => b[ 0 ] ) ), height = Math.max( ...brickCounts.map( ( b ) => b[ 1 ] ) );
+	const depth = brickCounts.reduce( ( sum, b ) => sum + b[ 2 ], 0 );
+	const indirection = new Uint32Array( width * height * depth );
+	const slots = levels.reduce( ( sum, l ) => sum + l.bricks.length, 0 );
+	const perProbe = decoder.coefficientsPerProbe, visibilityCount = decoder.coefficientCount( 0 );
+	const hasVisibility = levels.every( ( l ) => l.visibility );
+	const coefficients = new Float32Array( slots * BRICK_PROBES * perProbe );
+	const visibility = hasVisibility ? new Float32Array( slots * BRICK_PROBES * visibilityCount ) : null;
+	const origin = new Float32Array( 3 * MAX_LEVELS ), spacing = new Float32Array( MAX_LEVELS );
+	const dims = new Int32Array( 3 * MAX_LEVELS ), brickZ = new Int32Array( MAX_LEVELS );
+	let slot = 0, z = 0;
+	levels.forEach( ( level, l ) => {
+		const [ bx, by, bz ] = brickCounts[ l ];
+		if ( level.coefficients.length !== level.bricks.length * BRICK_PROBES * perProbe ) throw new Error( `level ${ l }: ${ level.coefficients.length } coefficients for ${ level.bricks.length } bricks of ${ BRICK_PROBES } probes × ${ perProbe }` );
+		coefficients.set( level.coefficients, slot * BRICK_PROBES * perProbe );
+		if ( visibility ) visibility.set( level.visibility, slot * BRICK_PROBES * visibilityCount );
+		level.bricks.forEach( ( b, s ) => {
+			if ( ! ( b >= 0 && b < bx * by * bz ) || ( s > 0 && b <= level.bricks[ s - 1 ] ) ) throw new Error( `level ${ l }: brick ${ b } out of range or order` );
+			const x = b % bx, y = Math.floor( b / bx ) % by, k = Math.floor( b / ( bx * by ) );
+			indirection[ x + width * ( y + height * ( z + k ) ) ] = slot + s + 1;
+		} );
+		origin.set( level.origin, 3 * l );
+		spacing[ l ] = level.spacing;
+		dims.set( level.dims, 3 * l );
+		brickZ[ l ] = z;
+		slot += level.bricks.length;
+		z += bz;
+	} );
+	return {
+		probes: probeTexture( coefficients, visibility, decoder, slots * BRICK_PROBES ),
+		indirection: { data: indirection, width, height, depth },
+		uniforms: {
+			bakerLevelCount: { type: 'int', value: levels.length },
+			bakerLevelOrigin: { type: 'vec3[]', value: origin },
+			bakerLevelSpacing: { type: 'float[]', value: spacing },
+			bakerLevelDims: { type: 'ivec3[]', value: dims },
+			bakerLevelBrickZ: { type: 'int[]', value: brickZ },
+		},
+	};
+}
+
+// Reads the pool through shaders/baker_adaptive.glsl's corners: each corner's probe decoded and
+// weighted (decoding is linear, so this equals decoding the blended probe).
+export const BAKER_ADAPTIVE_WEBGL_GLSL = /* glsl */ `
+uniform highp usampler3D bakerIndirection;
+uniform int bakerLevelCount;
+uniform vec3 bakerLevelOrigin[BAKER_MAX_LEVELS];
+uniform float bakerLevelSpacing[BAKER_MAX_LEVELS];
+uniform ivec3 bakerLevelDims[BAKER_MAX_LEVELS];
+uniform int bakerLevelBrickZ[BAKER_MAX_LEVELS];
+
+BakerCorners bakerAdaptiveCornersAt( vec3 position ) {
+  return bakerAdaptiveCorners( position, bakerIndirection, bakerLevelCount, bakerLevelOrigin, bakerLevelSpacing, bakerLevelDims, bakerLevelBrickZ );
+}
+int bakerPoolProbe( BakerCorners corners, int c ) {
+  ivec3 p = corners.local[ c ];
+  return ${ BRICK_PROBES } * corners.slot[ c ] + p.x + 8 * ( p.y + 8 * p.z );
+}
+vec3 bakerAdaptiveIrradiance( vec3 position, vec3 n ) {
+  BakerCorners corners = bakerAdaptiveCornersAt( position );
+  vec3 e = vec3( 0.0 );
+  for ( int c = 0; c < 8; ++ c ) if ( corners.weight[ c ] != 0.0 ) e += corners.weight[ c ] * bakerIrradiance( bakerPoolProbe( corners, c ), n );
+  return e;
+}
+float bakerAdaptiveVisibility( vec3 position, vec3 n ) {
+  BakerCorners corners = bakerAdaptiveCornersAt( position );
+  float v = 0.0;
+  for ( int c = 0; c < 8; ++ c ) if ( corners.weight[ c ] != 0.0 ) v += corners.weight[ c ] * bakerVisibility( bakerPoolProbe( corners, c ), n );
+  return v;
+}
+`;
+
+// The GLSL for adaptive volumes, to declare after BAKER_IRRADIANCE_GLSL: the level choice shared
+// with the desktop decoders (shaders/baker_adaptive.glsl, fetched beside this module) and the
+// WebGL reads above.
+export async function adaptiveGlsl( url = new URL( '../shaders/baker_adaptive.glsl', import.meta.url ) ) {
+	const response = await fetch( url );
+	if ( ! response.ok ) throw new Error( `${ url }: ${ response.status } ${ response.statusText }` );
+	return `${ await response.text() }\n${ BAKER_ADAPTIVE_WEBGL_GLSL }`;
+}

@@ -306,3 +306,28 @@ float bakerSampleVisibilityAdYCoCg(sampler3D textures[9], vec3 uvw, vec3 n) {
   BAKER_FETCH(textures, 9, uvw, t);
   return bakerVisibilityAdYCoCg(t, n);
 }
+
+// ---- Adaptive volumes (docs/DECODERS.md "Adaptive volumes on the GPU"); include
+// baker_adaptive.glsl first. The pool's textures are packed as above, per probe of a pool slot:
+// an atlas of slots, slot s at texel 8·(s mod S, (s / S) mod S, s / S²) + the probe's place in
+// its brick, S = slotsAcross (the EXR atlas's rule). Filter GL_NEAREST: bricks that are
+// neighbours in the volume are not neighbours in the atlas, so the eight corners are fetched and
+// blended here. For example, ad-ycocg:
+//   BakerCorners corners = bakerAdaptiveCorners(worldPosition, indirection, levelCount, levelOrigin,
+//                                                levelSpacing, levelDims, levelBrickZ);
+//   BAKER_ADAPTIVE_FETCH(pool, 15, corners, slotsAcross, t);
+//   vec3 e = bakerIrradianceAdYCoCg(t, n);
+
+ivec3 bakerPoolTexel(int slot, ivec3 local, int slotsAcross) {
+  ivec3 s = ivec3(slot % slotsAcross, (slot / slotsAcross) % slotsAcross, slot / (slotsAcross * slotsAcross));
+  return 8 * s + local;
+}
+
+#define BAKER_ADAPTIVE_FETCH(textures, count, corners, slotsAcross, texels)                             \
+  vec4 texels[count];                                                                                   \
+  for (int k = 0; k < count; ++k) {                                                                     \
+    texels[k] = vec4(0.0);                                                                              \
+    for (int c = 0; c < 8; ++c)                                                                         \
+      texels[k] += corners.weight[c] *                                                                  \
+                   texelFetch(textures[k], bakerPoolTexel(corners.slot[c], corners.local[c], slotsAcross), 0); \
+  }

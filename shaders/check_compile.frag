@@ -2,6 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // Calls every function of baker_irradiance.glsl, so that compiling this shader (the ctest
 // GlslDecoders.Compile, with glslangValidator) checks all of them. Not meant for rendering.
+#include "baker_adaptive.glsl"
 #include "baker_irradiance.glsl"
 
 layout(binding = 0) uniform sampler3D shL1[3];
@@ -18,6 +19,15 @@ layout(location = 0) uniform vec3 origin;
 layout(location = 1) uniform float spacing;
 layout(location = 2) uniform ivec3 dims;
 
+layout(binding = 54) uniform highp usampler3D indirection;
+layout(binding = 55) uniform sampler3D pool[15];
+layout(location = 3) uniform int levelCount;
+layout(location = 4) uniform vec3 levelOrigin[BAKER_MAX_LEVELS];
+layout(location = 8) uniform float levelSpacing[BAKER_MAX_LEVELS];
+layout(location = 12) uniform ivec3 levelDims[BAKER_MAX_LEVELS];
+layout(location = 16) uniform int levelBrickZ[BAKER_MAX_LEVELS];
+layout(location = 20) uniform int slotsAcross;
+
 layout(location = 0) in vec3 worldPosition;
 layout(location = 1) in vec3 normal;
 layout(location = 0) out vec4 color;
@@ -33,5 +43,9 @@ void main() {
             bakerSampleVisibilityAmbientCube(visibility2, uvw, n) + bakerSampleVisibilityAdLinear(visibility3, uvw, n) +
             bakerSampleVisibilityAdCos2(visibility3, uvw, n) + bakerSampleVisibilityAdSrbf(visibility3, uvw, n) +
             bakerSampleVisibilityAdYCoCg(visibility9, uvw, n);
+  BakerCorners corners =
+      bakerAdaptiveCorners(worldPosition, indirection, levelCount, levelOrigin, levelSpacing, levelDims, levelBrickZ);
+  BAKER_ADAPTIVE_FETCH(pool, 15, corners, slotsAcross, adaptive);
+  e += bakerIrradianceAdYCoCg(adaptive, n);
   color = vec4(e, v);
 }

@@ -1,6 +1,10 @@
 // decoder_samples: irradiance and visibility that decoders/baker_irradiance.h decodes from random
 // coefficients at chosen directions, for every basis, as JSON on stdout: what the ports of the
 // header to other languages (decoders/baker_irradiance.js) are checked against.
+// `decoder_samples adaptive`: an adaptive volume of random probes instead (three levels, each
+// holding some of its bricks) and what the header samples at points in and around it.
+#include <algorithm>
+#include <array>
 #include <cstdio>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -71,10 +75,111 @@ json samplesOf(const std::string& name, std::mt19937& rng) {
   return entry;
 }
 
+// Three levels, spacing ÷3 per level, each holding some bricks, the coarsest not all of them. Per held brick
+// 8³ probes of random numbers, as a pool slot holds them (probes past the grid's edge included).
+struct AdaptiveLevel {
+  baker_decode::Level level;
+  std::vector<int> bricks;  // held, increasing
+  std::vector<unsigned char> held;
+  std::vector<float> coefficients, visibility;  // per slot, per probe of the brick
+};
+
+AdaptiveLevel adaptiveLevel(baker_decode::Vec3 origin, double spacing, std::array<int, 3> dims, double heldShare,
+                            const baker_decode::BasisDecoder& decoder, std::mt19937& rng) {
+  AdaptiveLevel out;
+  out.level = {origin, spacing, {dims[0], dims[1], dims[2]}, nullptr};
+  const int brickCount = ((dims[0] + 7) / 8) * ((dims[1] + 7) / 8) * ((dims[2] + 7) / 8);
+  std::bernoulli_distribution keep(heldShare);
+  out.held.assign(brickCount, 0);
+  // No level holds its last column of bricks along x: points there read level 0's held probes
+  // renormalised, or none.
+  const int bricksX = (dims[0] + 7) / 8;
+  for (int b = 0; b < brickCount; ++b)
+    if (b == 0 || (b % bricksX != bricksX - 1 && keep(rng))) {
+      out.held[b] = 1;
+      out.bricks.push_back(b);
+    }
+  out.level.bricksHeld = out.held.data();
+  std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
+  out.coefficients.resize(out.bricks.size() * 512 * decoder.coefficientsPerProbe());
+  out.visibility.resize(out.bricks.size() * 512 * decoder.coefficientCount(0));
+  for (float& x : out.coefficients) x = uniform(rng);
+  for (float& x : out.visibility) x = uniform(rng);
+  return out;
+}
+
+// Where level probe `probe` sits in the level's slots (its rank among held bricks, then its place in
+// the brick), or -1 when the level does not hold it.
+long long slotProbe(const AdaptiveLevel& l, long long probe) {
+  const long long nx = l.level.dims[0], ny = l.level.dims[1];
+  const long long i = probe % nx, j = (probe / nx) % ny, k = probe / (nx * ny);
+  const long long brick = i / 8 + (nx + 7) / 8 * (j / 8 + (ny + 7) / 8 * (k / 8));
+  const auto at = std::lower_bound(l.bricks.begin(), l.bricks.end(), brick);
+  if (at == l.bricks.end() || *at != brick) return -1;
+  return (at - l.bricks.begin()) * 512 + i % 8 + 8 * (j % 8 + 8 * (k % 8));
+}
+
+json adaptiveSamples(const std::string& name, std::mt19937& rng) {
+  baker_decode::BasisDecoder decoder(name.c_str(), 0.0);
+  const int perProbe = decoder.coefficientsPerProbe(), visibilityCount = decoder.coefficientCount(0);
+  // Origin, spacings and positions exactly representable in float: what a GPU decoder is given
+  // then matches what the header is given, and only their arithmetic differs.
+  const baker_decode::Vec3 origin{-0.25, 0.125, -0.125};
+  std::vector<AdaptiveLevel> levels;
+  levels.push_back(adaptiveLevel(origin, 2.25, {10, 4, 3}, 0.0, decoder, rng));
+  levels.push_back(adaptiveLevel(origin, 0.75, {28, 10, 7}, 0.5, decoder, rng));
+  levels.push_back(adaptiveLevel(origin, 0.25, {82, 28, 19}, 0.15, decoder, rng));
+  std::vector<baker_decode::Level> headerLevels;
+  json levelsJson = json::array();
+  for (const AdaptiveLevel& l : levels) {
+    headerLevels.push_back(l.level);
+    levelsJson.push_back({{"origin", {l.level.origin.x, l.level.origin.y, l.level.origin.z}},
+                          {"spacing", l.level.spacing},
+                          {"dims", l.level.dims},
+                          {"bricks", l.bricks},
+                          {"coefficients", l.coefficients},
+                          {"visibility", l.visibility}});
+  }
+  std::uniform_real_distribution<double> along(-0.1, 1.1);
+  std::normal_distribution<double> gaussian;
+  const std::vector<float> none(perProbe, 0.0f);
+  json points = json::array();
+  for (int p = 0; p < 600; ++p) {
+    const baker_decode::Vec3 at{float(origin.x + 9 * 2.25 * along(rng)), float(origin.y + 3 * 2.25 * along(rng)),
+                                float(origin.z + 2 * 2.25 * along(rng))};
+    const baker_decode::Vec3 n = baker_decode::normalize({gaussian(rng), gaussian(rng), gaussian(rng)});
+    const baker_decode::LevelNeighbourhood picked = baker_decode::finestLevelNeighbourhood(at, headerLevels.data(), 3);
+    const AdaptiveLevel& l = levels[picked.level];
+    const float *values[8], *visibility[8];
+    for (int c = 0; c < 8; ++c) {
+      const long long s = slotProbe(l, picked.around.probe[c]);
+      values[c] = s < 0 ? none.data() : &l.coefficients[s * perProbe];
+      visibility[c] = s < 0 ? none.data() : &l.visibility[s * visibilityCount];
+    }
+    std::vector<float> blended(perProbe), blendedVisibility(visibilityCount);
+    baker_decode::blendProbes(values, picked.around.weight, perProbe, blended.data());
+    baker_decode::blendProbes(visibility, picked.around.weight, visibilityCount, blendedVisibility.data());
+    const baker_decode::Rgb e = decoder.irradiance(blended.data(), n);
+    points.push_back({{"position", {at.x, at.y, at.z}},
+                      {"normal", {n.x, n.y, n.z}},
+                      {"level", picked.level},
+                      {"weights", picked.around.weight},
+                      {"irradiance", {e.r, e.g, e.b}},
+                      {"visibility", decoder.visibility(blendedVisibility.data(), n)}});
+  }
+  return {{"basis", name}, {"levels", levelsJson}, {"points", points}};
+}
+
 }  // namespace
 
-int main() {
+int main(int argc, char** argv) {
   std::mt19937 rng(kSeed);
+  if (argc > 1 && std::string(argv[1]) == "adaptive") {
+    json all = json::array();
+    for (const char* name : {"sh-l2", "ad-ycocg"}) all.push_back(adaptiveSamples(name, rng));
+    std::cout << all.dump() << "\n";
+    return 0;
+  }
   json all = json::array();
   for (const std::string& name : baker::basisNames()) all.push_back(samplesOf(name, rng));
   std::cout << all.dump() << "\n";

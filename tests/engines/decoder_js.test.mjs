@@ -1,14 +1,17 @@
 // decoders/baker_irradiance.js against decoders/baker_irradiance.h: for every basis, the
 // irradiance and visibility the header decodes from random coefficients (decoder_samples) agree
-// within 1e-5 of the coefficients' magnitude (≤ 1).
+// within 1e-5 of the coefficients' magnitude (≤ 1). Then adaptive volumes (decoder_samples
+// adaptive): finestLevelNeighbourhood picks the header's level and weights at every point, and E
+// and visibility blended there agree within 1e-5 of max(1, |E|).
 // argv: node decoder_js.test.mjs DECODER_SAMPLES SOURCE_DIR
 import { execFileSync } from 'node:child_process';
 import path from 'node:path';
 import { pathToFileURL } from 'node:url';
 
 const [ samplesBinary, sourceDir ] = process.argv.slice( 2 );
-const { BasisDecoder } = await import( pathToFileURL( path.join( sourceDir, 'decoders/baker_irradiance.js' ) ) );
-const bases = JSON.parse( execFileSync( samplesBinary, { encoding: 'utf8', maxBuffer: 1 << 28 } ) );
+const { BasisDecoder, blendProbes, finestLevelNeighbourhood } = await import( pathToFileURL( path.join( sourceDir, 'decoders/baker_irradiance.js' ) ) );
+const samples = ( ...args ) => JSON.parse( execFileSync( samplesBinary, args, { encoding: 'utf8', maxBuffer: 1 << 30 } ) );
+const bases = samples(), adaptive = samples( 'adaptive' );
 let checks = 0, failures = 0, worst = 0;
 for ( const entry of bases ) {
 	const decoder = new BasisDecoder( entry.basis, entry.sharpness ?? 0 );
@@ -32,6 +35,49 @@ for ( const entry of bases ) {
 		}
 	}
 }
+// Level l's probes as a level-wide array, as probeNeighbourhood numbers them (zeros where not held).
+function levelProbes( level, key, count ) {
+	const [ nx, ny, nz ] = level.dims, bx = Math.ceil( nx / 8 ), by = Math.ceil( ny / 8 );
+	const out = new Float64Array( nx * ny * nz * count );
+	level.bricks.forEach( ( b, s ) => {
+		const x0 = 8 * ( b % bx ), y0 = 8 * ( Math.floor( b / bx ) % by ), z0 = 8 * Math.floor( b / ( bx * by ) );
+		for ( let k = 0; k < 8; ++ k ) for ( let j = 0; j < 8; ++ j ) for ( let i = 0; i < 8; ++ i ) {
+			if ( x0 + i >= nx || y0 + j >= ny || z0 + k >= nz ) continue;
+			const from = ( 512 * s + i + 8 * ( j + 8 * k ) ) * count, to = ( x0 + i + nx * ( y0 + j + ny * ( z0 + k ) ) ) * count;
+			out.set( level[ key ].slice( from, from + count ), to );
+		}
+	} );
+	return out;
+}
+let worstAdaptive = 0;
+for ( const entry of adaptive ) {
+	const decoder = new BasisDecoder( entry.basis, 0 );
+	const perProbe = decoder.coefficientsPerProbe, count0 = decoder.coefficientCount( 0 );
+	const levels = entry.levels.map( ( l ) => {
+		const bricksHeld = new Uint8Array( l.dims.reduce( ( n, d ) => n * Math.ceil( d / 8 ), 1 ) );
+		l.bricks.forEach( ( b ) => { bricksHeld[ b ] = 1; } );
+		return { ...l, bricksHeld, values: levelProbes( l, 'coefficients', perProbe ), visibilityValues: levelProbes( l, 'visibility', count0 ) };
+	} );
+	for ( const point of entry.points ) {
+		const picked = finestLevelNeighbourhood( point.position, levels );
+		const level = levels[ picked.level ];
+		++ checks;
+		if ( picked.level !== point.level || picked.weight.some( ( w, c ) => Math.abs( w - point.weights[ c ] ) > 1e-12 ) ) {
+			if ( ++ failures <= 20 ) console.error( `FAIL: adaptive ${ entry.basis } at ${ point.position }: level ${ picked.level } weights ${ picked.weight }, header level ${ point.level } weights ${ point.weights }` );
+			continue;
+		}
+		const got = [ ...decoder.irradiance( blendProbes( level.values, picked, perProbe ), point.normal ),
+			decoder.visibility( blendProbes( level.visibilityValues, picked, count0 ), point.normal ) ];
+		const expected = [ ...point.irradiance, point.visibility ];
+		for ( let k = 0; k < 4; ++ k ) {
+			const error = Math.abs( got[ k ] - expected[ k ] ) / Math.max( 1, Math.abs( expected[ k ] ) );
+			worstAdaptive = Math.max( worstAdaptive, error );
+			++ checks;
+			if ( ! ( error <= 1e-5 ) && ++ failures <= 20 ) console.error( `FAIL: adaptive ${ entry.basis } at ${ point.position }: value ${ k } ${ got[ k ] }, header ${ expected[ k ] }` );
+		}
+	}
+}
+console.log( `${ adaptive.length } adaptive volumes: the header's level and weights at every point; largest difference in E ${ worstAdaptive.toExponential( 2 ) } of max(1, |E|)` );
 console.log( `${ bases.length } bases; largest difference from the header ${ worst.toExponential( 2 ) }` );
 console.log( `decoder_js: ${ checks - failures } of ${ checks } checks passed` );
 process.exit( failures === 0 && bases.length > 0 ? 0 : 1 );

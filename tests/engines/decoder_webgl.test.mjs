@@ -1,18 +1,21 @@
 // decoders/baker_irradiance_webgl.js (the GLSL the viewer shades probes with) against
 // decoders/baker_irradiance.h: every basis's random coefficients (decoder_samples) decoded per
 // pixel in WebGL 2 (Debian's headless Chromium, SwiftShader) into a float render target must
-// agree with the header within 1e-5 of max(1, |E|) (the coefficients are at most 1).
+// agree with the header within 1e-5 of max(1, |E|) (the coefficients are at most 1). Then
+// adaptive volumes (decoder_samples adaptive): the level each point is read from, through the
+// indirection texture, and E and visibility there, against the header's finestLevelNeighbourhood.
 // argv: node decoder_webgl.test.mjs DECODER_SAMPLES SOURCE_DIR
 import { execFileSync } from 'node:child_process';
 import path from 'node:path';
 import { openPage, serve } from './browser.mjs';
 
 const [ samplesBinary, sourceDir ] = process.argv.slice( 2 );
-const bases = JSON.parse( execFileSync( samplesBinary, { encoding: 'utf8', maxBuffer: 1 << 28 } ) );
+const samples = ( ...args ) => JSON.parse( execFileSync( samplesBinary, args, { encoding: 'utf8', maxBuffer: 1 << 30 } ) );
+const bases = samples(), adaptive = samples( 'adaptive' );
 
 const page = `<!doctype html><html><body><canvas id="gl"></canvas><script type="module">
 import { BasisDecoder } from '/decoders/baker_irradiance.js';
-import { BAKER_IRRADIANCE_GLSL, bakerUniforms, probeTexture, PROBE_TEXTURE_WIDTH } from '/decoders/baker_irradiance_webgl.js';
+import { BAKER_IRRADIANCE_GLSL, adaptiveGlsl, adaptiveTextures, bakerUniforms, probeTexture } from '/decoders/baker_irradiance_webgl.js';
 const gl = document.getElementById( 'gl' ).getContext( 'webgl2' );
 if ( ! gl.getExtension( 'EXT_color_buffer_float' ) ) throw new Error( 'no EXT_color_buffer_float' );
 function compile( type, source ) {
@@ -22,13 +25,18 @@ function compile( type, source ) {
   if ( ! gl.getShaderParameter( s, gl.COMPILE_STATUS ) ) throw new Error( gl.getShaderInfoLog( s ) );
   return s;
 }
-const program = gl.createProgram();
-gl.attachShader( program, compile( gl.VERTEX_SHADER, '#version 300 es\\nvoid main() { vec2 p = vec2( gl_VertexID & 1, gl_VertexID >> 1 ) * 4.0 - 1.0; gl_Position = vec4( p, 0, 1 ); }' ) );
-gl.attachShader( program, compile( gl.FRAGMENT_SHADER, '#version 300 es\\nprecision highp float;\\nprecision highp int;\\n' + BAKER_IRRADIANCE_GLSL +
-  '\\nuniform highp sampler2D directions;\\nout vec4 colour;\\nvoid main() { int p = int( gl_FragCoord.x ); vec3 n = texelFetch( directions, ivec2( p, 0 ), 0 ).xyz;' +
-  ' colour = vec4( bakerIrradiance( p, n ), bakerVisibility( p, n ) ); }' ) );
-gl.linkProgram( program );
-if ( ! gl.getProgramParameter( program, gl.LINK_STATUS ) ) throw new Error( gl.getProgramInfoLog( program ) );
+function link( declarations, main ) {
+  const program = gl.createProgram();
+  gl.attachShader( program, compile( gl.VERTEX_SHADER, '#version 300 es\\nvoid main() { vec2 p = vec2( gl_VertexID & 1, gl_VertexID >> 1 ) * 4.0 - 1.0; gl_Position = vec4( p, 0, 1 ); }' ) );
+  gl.attachShader( program, compile( gl.FRAGMENT_SHADER, '#version 300 es\\nprecision highp float;\\nprecision highp int;\\n' + BAKER_IRRADIANCE_GLSL + declarations +
+    '\\nuniform highp sampler2D directions;\\nout vec4 colour;\\nvoid main() { int p = int( gl_FragCoord.x ); vec3 n = texelFetch( directions, ivec2( p, 0 ), 0 ).xyz;' + main + ' }' ) );
+  gl.linkProgram( program );
+  if ( ! gl.getProgramParameter( program, gl.LINK_STATUS ) ) throw new Error( gl.getProgramInfoLog( program ) );
+  return program;
+}
+const program = link( '', ' colour = vec4( bakerIrradiance( p, n ), bakerVisibility( p, n ) );' );
+const adaptiveProgram = link( await adaptiveGlsl(), ' vec3 at = texelFetch( directions, ivec2( p, 1 ), 0 ).xyz;' +
+  ' colour = vec4( bakerAdaptiveIrradiance( at, n ), bakerAdaptiveVisibility( at, n ) );' );
 function floatTexture( unit, width, height, data ) {
   const t = gl.createTexture();
   gl.activeTexture( gl.TEXTURE0 + unit );
@@ -37,6 +45,32 @@ function floatTexture( unit, width, height, data ) {
   gl.texParameteri( gl.TEXTURE_2D, gl.TEXTURE_MIN_FILTER, gl.NEAREST );
   gl.texParameteri( gl.TEXTURE_2D, gl.TEXTURE_MAG_FILTER, gl.NEAREST );
   return t;
+}
+function setUniforms( program, uniforms ) {
+  for ( const [ name, { type, value } ] of Object.entries( uniforms ) ) {
+    const at = gl.getUniformLocation( program, name );
+    if ( type === 'vec3[]' ) gl.uniform3fv( at, value );
+    else if ( type === 'ivec3[]' ) gl.uniform3iv( at, value );
+    else if ( type === 'int[]' ) gl.uniform1iv( at, value );
+    else if ( type === 'float[]' ) gl.uniform1fv( at, value );
+    else if ( type === 'int' ) gl.uniform1i( at, value );
+    else gl.uniform1f( at, value );
+  }
+}
+// Draws n pixels of the bound program into a float target and reads them back.
+function render( n ) {
+  const target = gl.createTexture();
+  gl.activeTexture( gl.TEXTURE3 );
+  gl.bindTexture( gl.TEXTURE_2D, target );
+  gl.texStorage2D( gl.TEXTURE_2D, 1, gl.RGBA32F, n, 1 );
+  const framebuffer = gl.createFramebuffer();
+  gl.bindFramebuffer( gl.FRAMEBUFFER, framebuffer );
+  gl.framebufferTexture2D( gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, target, 0 );
+  gl.viewport( 0, 0, n, 1 );
+  gl.drawArrays( gl.TRIANGLES, 0, 3 );
+  const out = new Float32Array( 4 * n );
+  gl.readPixels( 0, 0, n, 1, gl.RGBA, gl.FLOAT, out );
+  return Array.from( out );
 }
 window.decode = ( entry ) => {
   const decoder = new BasisDecoder( entry.basis, entry.sharpness ?? 0 );
@@ -54,31 +88,39 @@ window.decode = ( entry ) => {
   floatTexture( 1, n, 1, directions );
   gl.uniform1i( gl.getUniformLocation( program, 'bakerProbes' ), 0 );
   gl.uniform1i( gl.getUniformLocation( program, 'directions' ), 1 );
-  for ( const [ name, { type, value } ] of Object.entries( bakerUniforms( decoder, probes ) ) ) {
-    const at = gl.getUniformLocation( program, name );
-    if ( type === 'vec3[]' ) gl.uniform3fv( at, value );
-    else if ( type === 'int' ) gl.uniform1i( at, value );
-    else gl.uniform1f( at, value );
-  }
-  const target = gl.createTexture();
+  setUniforms( program, bakerUniforms( decoder, probes ) );
+  return render( n );
+};
+window.decodeAdaptive = ( entry ) => {
+  const decoder = new BasisDecoder( entry.basis, 0 );
+  const levels = entry.levels.map( ( l ) => ( { ...l, coefficients: new Float32Array( l.coefficients ), visibility: new Float32Array( l.visibility ) } ) );
+  const pool = adaptiveTextures( levels, decoder );
+  const n = entry.points.length, rows = new Float32Array( 8 * n );
+  entry.points.forEach( ( point, p ) => {
+    rows.set( point.normal, 4 * p );
+    rows.set( point.position, 4 * ( n + p ) );
+  } );
+  gl.useProgram( adaptiveProgram );
+  floatTexture( 0, pool.probes.width, pool.probes.height, pool.probes.data );
+  floatTexture( 1, n, 2, rows );
+  const indirection = gl.createTexture();
   gl.activeTexture( gl.TEXTURE2 );
-  gl.bindTexture( gl.TEXTURE_2D, target );
-  gl.texStorage2D( gl.TEXTURE_2D, 1, gl.RGBA32F, n, 1 );
-  const framebuffer = gl.createFramebuffer();
-  gl.bindFramebuffer( gl.FRAMEBUFFER, framebuffer );
-  gl.framebufferTexture2D( gl.FRAMEBUFFER, gl.COLOR_ATTACHMENT0, gl.TEXTURE_2D, target, 0 );
-  gl.viewport( 0, 0, n, 1 );
-  gl.drawArrays( gl.TRIANGLES, 0, 3 );
-  const out = new Float32Array( 4 * n );
-  gl.readPixels( 0, 0, n, 1, gl.RGBA, gl.FLOAT, out );
-  return Array.from( out );
+  gl.bindTexture( gl.TEXTURE_3D, indirection );
+  gl.texImage3D( gl.TEXTURE_3D, 0, gl.R32UI, pool.indirection.width, pool.indirection.height, pool.indirection.depth, 0, gl.RED_INTEGER, gl.UNSIGNED_INT, pool.indirection.data );
+  gl.texParameteri( gl.TEXTURE_3D, gl.TEXTURE_MIN_FILTER, gl.NEAREST );
+  gl.texParameteri( gl.TEXTURE_3D, gl.TEXTURE_MAG_FILTER, gl.NEAREST );
+  gl.uniform1i( gl.getUniformLocation( adaptiveProgram, 'bakerProbes' ), 0 );
+  gl.uniform1i( gl.getUniformLocation( adaptiveProgram, 'directions' ), 1 );
+  gl.uniform1i( gl.getUniformLocation( adaptiveProgram, 'bakerIndirection' ), 2 );
+  setUniforms( adaptiveProgram, { ...bakerUniforms( decoder, pool.probes ), ...pool.uniforms } );
+  return render( n );
 };
 window.ready = true;
 </script></body></html>`;
 
-const { server, url } = await serve( page, { '/decoders/': path.join( sourceDir, 'decoders' ) } );
+const { server, url } = await serve( page, { '/decoders/': path.join( sourceDir, 'decoders' ), '/shaders/': path.join( sourceDir, 'shaders' ) } );
 const { browser, page: tab, errors } = await openPage( url );
-let checks = 0, failures = 0, worst = 0;
+let checks = 0, failures = 0, worst = 0, worstAdaptive = 0;
 const fail = ( message ) => { if ( ++ failures <= 20 ) console.error( `FAIL: ${ message }` ); };
 try {
 	await tab.waitForFunction( 'window.ready === true', { timeout: 60000 } ).catch( () => {} );
@@ -94,6 +136,18 @@ try {
 			}
 		} );
 	}
+	for ( const entry of adaptive ) {
+		const got = await tab.evaluate( ( e ) => window.decodeAdaptive( e ), entry );
+		entry.points.forEach( ( point, p ) => {
+			const expected = [ ...point.irradiance, point.visibility ];
+			for ( let k = 0; k < 4; ++ k ) {
+				const error = Math.abs( got[ 4 * p + k ] - expected[ k ] ) / Math.max( 1, Math.abs( expected[ k ] ) );
+				worstAdaptive = Math.max( worstAdaptive, error );
+				++ checks;
+				if ( ! ( error <= 1e-5 ) ) fail( `adaptive ${ entry.basis } at ${ point.position } (level ${ point.level }): value ${ k } ${ got[ 4 * p + k ] }, header ${ expected[ k ] }` );
+			}
+		} );
+	}
 	++ checks;
 	if ( errors.length ) fail( `console errors: ${ errors.join( '; ' ) }` );
 } finally {
@@ -101,5 +155,6 @@ try {
 	server.close();
 }
 console.log( `${ bases.length } bases in WebGL; largest difference from the header ${ worst.toExponential( 2 ) } of max(1, |E|)` );
+console.log( `${ adaptive.length } adaptive volumes of ${ adaptive[ 0 ].levels.length } levels through the indirection texture; largest difference ${ worstAdaptive.toExponential( 2 ) } of max(1, |E|)` );
 console.log( `decoder_webgl: ${ checks - failures } of ${ checks } checks passed` );
 process.exit( failures === 0 && checks > 1 ? 0 : 1 );
