@@ -4,26 +4,35 @@
 
 #include <atomic>
 #include <chrono>
+#include <optional>
 
 #include "common/Error.h"
 #include "volume/AdaptiveFinish.h"
 #include "volume/MemoryEstimate.h"
+#include "volume/Shard.h"
 
 namespace baker {
 
 AdaptiveVolume bakeAdaptive(const Scene& scene, const RayTracer& tracer, const Basis& basis,
                             const AdaptivePlacement& placement, const BakeSettings& settings, BakeStats* stats,
-                            const std::function<void(std::int64_t, std::int64_t)>& progress) {
-  const double needed = volumeMemoryBytes(double(placement.probes()), basis);
+                            const std::function<void(std::int64_t, std::int64_t)>& progress,
+                            const std::optional<Shard>& shard) {
+  const std::vector<std::vector<std::int64_t>> share =
+      shard ? shardLevelBricks(placement.grids, placement.bricks, *shard) : placement.bricks;
+  std::int64_t brickCount = 0, probes = 0;
+  for (std::size_t level = 0; level < share.size(); ++level) {
+    brickCount += std::int64_t(share[level].size());
+    for (const std::int64_t b : share[level]) probes += placement.grids[level].brickExtent(b).cast<std::int64_t>().prod();
+  }
+  const double needed = volumeMemoryBytes(double(probes), basis);
   if (needed > double(physicalMemoryBytes()))
     throw SettingError("spacing", fmt::format(": {} probes over {} levels in {} need about {:.3g} GiB, more than this "
-                                              "machine has; nothing was traced (raise the spacing or lower the levels)",
-                                              placement.probes(), placement.levels(), basis.name(), needed / double(1ull << 30)));
+                                              "machine has; nothing was traced (raise the spacing, lower the levels or "
+                                              "cut the bake into shards)",
+                                              probes, placement.levels(), basis.name(), needed / double(1ull << 30)));
   const BrickBaker baker(scene, tracer, basis, settings);
   const auto start = std::chrono::steady_clock::now();
   if (stats) *stats = BakeStats{};
-  std::int64_t brickCount = 0;
-  for (const std::vector<std::int64_t>& bricks : placement.bricks) brickCount += std::int64_t(bricks.size());
   std::atomic<std::int64_t> bricksDone{0};
 
   AdaptiveVolume volume;
@@ -35,18 +44,23 @@ AdaptiveVolume bakeAdaptive(const Scene& scene, const RayTracer& tracer, const B
     firstIds[std::size_t(index)] = firstIds[std::size_t(index) + 1] + std::uint64_t(placement.grids[std::size_t(index) + 1].probeCount());
   for (int index = 0; index < placement.levels(); ++index) {
     const ProbeGrid& grid = placement.grids[std::size_t(index)];
-    const std::vector<std::int64_t>& bricks = placement.bricks[std::size_t(index)];
+    const std::vector<std::int64_t>& bricks = share[std::size_t(index)];
     const bool everyBrick = std::int64_t(bricks.size()) == grid.brickCount();
     volume.levels.push_back(baker.emptyVolume(grid, everyBrick ? ProbeRows() : ProbeRows(grid, bricks)));
     Volume& level = volume.levels.back();
-    if (index > 0) markLevelBorder(level, placedBricks(grid, bricks));
+    level.shard = shard;
+    if (index > 0) markLevelBorder(level, placedBricks(grid, placement.bricks[std::size_t(index)]));
     baker.bake(level, bricks, firstIds[std::size_t(index)], stats, [&] {
       const std::int64_t done = ++bricksDone;
       if (progress) progress(done, brickCount);
     });
   }
-  finishAdaptiveLevels(volume);
-  for (const Volume& level : volume.levels) requireFiniteBake(level);
+  if (shard) {
+    volume.placement = summarizePlacement(placement.bricks);
+  } else {
+    finishAdaptiveLevels(volume);
+    for (const Volume& level : volume.levels) requireFiniteBake(level);
+  }
   std::vector<const Volume*> levels;
   for (const Volume& level : volume.levels) levels.push_back(&level);
   baker.finishStats(levels, stats);

@@ -1,10 +1,12 @@
 #pragma once
 #include <cstdint>
 #include <functional>
+#include <optional>
 
 #include "bake/AdaptivePlacement.h"
 #include "bake/Baker.h"
 #include "volume/AdaptiveVolume.h"
+#include "volume/Shard.h"
 
 namespace baker {
 
@@ -20,8 +22,12 @@ namespace baker {
 //  - a level then keeps only the bricks worth storing (StoredBricks.h), before finer levels read
 //    it, so that its border probes take what a reader of the file samples.
 // The result depends on the settings' seed, not on the number of threads.
+// With `shard`, only the shard's share of the levels' bricks (shardLevelBricks) is traced and
+// nothing is finished: a part (AdaptiveVolume::placement) whose probes are the same bits as in the
+// whole bake; finishAdaptiveLevels runs when the parts are put together (AdaptiveAssembly).
 AdaptiveVolume bakeAdaptive(const Scene& scene, const RayTracer& tracer, const Basis& basis,
                             const AdaptivePlacement& placement, const BakeSettings& settings, BakeStats* stats,
-                            const std::function<void(std::int64_t, std::int64_t)>& progress = {});
+                            const std::function<void(std::int64_t, std::int64_t)>& progress = {},
+                            const std::optional<Shard>& shard = std::nullopt);
 
 }  // namespace baker

@@ -130,6 +130,22 @@ std::int64_t BakeJob::rayLimit() const {
                                           : std::int64_t(settings_.rays);
 }
 
+std::int64_t BakeJob::bricksInBake() const {
+  if (!placement_) return grid_.brickCount();
+  std::int64_t bricks = 0;
+  for (const std::vector<std::int64_t>& level : placement_->bricks) bricks += std::int64_t(level.size());
+  return bricks;
+}
+
+std::int64_t BakeJob::bricksInShard() const {
+  if (!request_.shard) return bricksInBake();
+  if (!placement_) return std::int64_t(shardBricks(grid_, *request_.shard).size());
+  std::int64_t bricks = 0;
+  for (const auto& level : shardLevelBricks(placement_->grids, placement_->bricks, *request_.shard))
+    bricks += std::int64_t(level.size());
+  return bricks;
+}
+
 Volume BakeJob::bake(BakeStats* stats, const std::function<void(std::int64_t, std::int64_t)>& progress) const {
   if (placement_) throw std::logic_error("BakeJob::bake: an adaptive bake has levels (bakeLevels)");
   Volume volume = bakeVolume(*scene_, *tracer_, *basis_, grid_, settings_, stats, progress, request_.shard);
@@ -144,7 +160,7 @@ AdaptiveVolume BakeJob::bakeLevels(BakeStats* stats,
     volume.levels.push_back(bake(stats, progress));
     return volume;
   }
-  AdaptiveVolume volume = bakeAdaptive(*scene_, *tracer_, *basis_, *placement_, settings_, stats, progress);
+  AdaptiveVolume volume = bakeAdaptive(*scene_, *tracer_, *basis_, *placement_, settings_, stats, progress, request_.shard);
   recordSettings(*this, volume.levels.front());
   return volume;
 }

@@ -55,6 +55,10 @@ class BakeJob {
   // Every probe of the grid; the volume's `settings` record what made it (FORMAT.md).
   // `progress` hears (bricks done, bricks in all) from worker threads.
   // A uniform bake only (std::logic_error otherwise).
+  // Bricks of 8³ probes the whole bake traces (every level's placed ones, adaptive), and those of
+  // its shard (all of them when it is not cut into shards).
+  std::int64_t bricksInBake() const;
+  std::int64_t bricksInShard() const;
   Volume bake(BakeStats* stats = nullptr, const std::function<void(std::int64_t, std::int64_t)>& progress = {}) const;
   // Every level of an adaptive bake, or the one level of a uniform one.
   AdaptiveVolume bakeLevels(BakeStats* stats = nullptr,

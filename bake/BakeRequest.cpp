@@ -33,8 +33,9 @@ void validateBakeRequest(const BakeRequest& r) {
     throw SettingError("levels", fmt::format("must be in 1..{}, got {}", kMaxLevels, r.levels));
   if (r.marginCells < kMinMarginCells || r.marginCells > kMaxMarginCells)
     throw SettingError("margin", fmt::format("must be in {}..{} cells, got {}", kMinMarginCells, kMaxMarginCells, r.marginCells));
-  if (r.adaptive() && r.shard)
-    throw SettingError("shard", "an adaptive bake is not cut into shards yet; bake it whole, or with uniform placement");
+  if (r.adaptive() && r.shard && r.levels < 2)
+    throw SettingError("shard", "an adaptive bake of one level is written as a uniform volume and is not cut into "
+                                "shards; bake 2 or more levels, or bake it whole");
   requireKnownEffects(r.turnedOff);
   const std::unique_ptr<Basis> basis = makeBasis(r.basis, r.sgSharpness);
   if (r.nonNegative && !admitsNonNegativeFit(*basis))

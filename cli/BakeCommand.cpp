@@ -52,7 +52,7 @@ nlohmann::json shardJson(const BakeJob& job) {
   const std::optional<Shard>& shard = job.request().shard;
   if (!shard) return nullptr;
   return {{"index", shard->index}, {"count", shard->count},
-          {"bricks", shardBricks(job.grid(), *shard).size()}, {"bricks_in_grid", job.grid().brickCount()}};
+          {"bricks", job.bricksInShard()}, {"bricks_in_grid", job.bricksInBake()}};
 }
 
 nlohmann::json placementJson(const BakeJob& job) {
@@ -159,7 +159,7 @@ void printBakeSummary(const BakeReport& r) {
   if (const std::optional<Shard>& shard = job.request().shard)
     std::cout << fmt::format("wrote {}: shard {} of the bake ({} of {} bricks, {}), to merge with the other parts "
                              "(baker merge OUT PART...)\n",
-                             r.output.path, shardName(*shard), stats.bricks, grid.brickCount(),
+                             r.output.path, shardName(*shard), stats.bricks, job.bricksInBake(),
                              job.basis().name());
   else
     std::cout << fmt::format("wrote {} ({}, {} coefficients per probe)\n", r.output.path, job.basis().name(),
@@ -175,12 +175,26 @@ VolumeOutput partOutput(const BakeRequest& request, std::string out, const std::
     throw SettingError("format", fmt::format("{}: a shard's part is a .vdb file or an EXR directory; bake the parts "
                                              "in one of those, then `baker merge --format {} OUT PART...` writes the "
                                              "engine's files", format, format));
+  if (request.adaptive() && format == "exr")
+    throw SettingError("format", "exr: a shard's part of an adaptive bake is a .vdb file; `baker merge --format exr` "
+                                 "writes the whole volume as EXR slices");
   if (out.empty()) {
     const Shard& s = *request.shard;
     out = fmt::format("{}_shard-{}-of-{}{}", std::filesystem::path(request.scenePath).stem().string(), s.index,
                       s.count, format == "exr" ? "_exr" : ".vdb");
   }
-  return volumeOutput(request.scenePath, out, format, "float");
+  const VolumeOutput output = volumeOutput(request.scenePath, out, format, "float");
+  if (request.adaptive() && output.format != VolumeFormat::Vdb)
+    throw SettingError("format", fmt::format("{}: a shard's part of an adaptive bake is a .vdb file; `baker merge` "
+                                             "writes the whole volume as EXR slices if asked", output.path));
+  return output;
+}
+
+// MPI sets the shard itself, so BakeRequest's word on one adaptive level would name --shard.
+void requireSpreadOverRanks(const BakeRequest& request) {
+  if (request.adaptive() && request.levels < 2)
+    throw SettingError("mpi", "an adaptive bake of one level is written as a uniform volume and is not spread over "
+                              "ranks; give --levels 2 or more, or bake it in one process");
 }
 
 }  // namespace
@@ -218,9 +232,8 @@ int runBakeCommand(int argc, char** argv) {
 
   return runGuarded("baker", app, argc, argv, [&]() {
     if (!shardText.empty()) options.request.shard = requireShard(shardText);
+    if (mpi) requireSpreadOverRanks(options.request);
     requirePlacementOptions(app, options.request);
-    if (mpi && options.request.adaptive())
-      throw SettingError("placement", "adaptive is not baked over MPI yet (docs/ADAPTIVE.md); bake it in one process");
     const VolumeOutput output = options.request.shard ? partOutput(options.request, outPath, format)
                                                       : volumeOutput(options.request.scenePath, outPath, format, precision);
     // EXR slices are written through the image module: a missing one fails now, not after the bake.

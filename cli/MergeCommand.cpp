@@ -31,6 +31,7 @@ int runMergeCommand(int argc, char** argv) {
                                   {"format", volumeFormatName(output.format)},
                                   {"basis", r.basis},
                                   {"parts", r.shards},
+                                  {"levels", r.levels},
                                   {"probes", r.probes},
                                   {"invalid_probes_filled", r.invalidProbes},
                                   {"seconds", {{"read_and_fill", r.readSeconds}, {"write", r.writeSeconds}}},
@@ -39,10 +40,10 @@ int runMergeCommand(int argc, char** argv) {
                 << "\n";
       return 0;
     }
-    std::cout << fmt::format("wrote {} ({}, {} probes) from {} parts; {} invalid probes filled from their "
+    std::cout << fmt::format("wrote {} ({}, {} probes{}) from {} parts; {} invalid probes filled from their "
                              "neighbours across the whole grid; read and fill {:.2f} s, write {:.2f} s\n",
-                             output.path, r.basis, r.probes, r.shards, r.invalidProbes, r.readSeconds,
-                             r.writeSeconds);
+                             output.path, r.basis, r.probes, r.levels > 1 ? fmt::format(" in {} levels", r.levels) : "",
+                             r.shards, r.invalidProbes, r.readSeconds, r.writeSeconds);
     if (!r.engineExport.engine.empty())
       std::cout << fmt::format("  for {}: {}\n", r.engineExport.engine, r.engineExport.conversion);
     return 0;

@@ -13,7 +13,8 @@
 //   fragment shader: BAKER_IRRADIANCE_GLSL, then await adaptiveGlsl(), then
 //   bakerAdaptiveIrradiance( position, n ), bakerAdaptiveVisibility( position, n )
 //   uniforms: bakerUniforms( decoder, pool.probes ) and pool.uniforms; bind pool.indirection as an
-//   R32UI 3D texture (texelFetch only) to bakerIndirection
+//   R32UI 3D texture to bakerIndirection, filters NEAREST and no mipmaps (an incomplete texture
+//   reads 0); the fragment shader needs precision highp int
 import { icosahedronVertex } from './baker_irradiance.js';
 
 // Levels an adaptive volume holds at most (shaders/baker_adaptive.glsl's BAKER_MAX_LEVELS).
@@ -263,7 +264,8 @@ float bakerVisibility( int probe, vec3 n ) { return bakerExpandPrimary( probe, b
 // - indirection: { data: Uint32Array, width, height, depth }, texel (bx, by, brickZ + bz) = 1 +
 //   the pool slot of the level's brick, 0 where it holds none; levels stacked along z;
 // - uniforms: the levels' grids for the GLSL, { name: { type, value } }.
-export function adaptiveTextures( levels, decoder ) {
+// maxTextureSize: gl.getParameter( gl.MAX_TEXTURE_SIZE ), to refuse a pool taller than the GPU takes.
+export function adaptiveTextures( levels, decoder, maxTextureSize = Infinity ) {
 	if ( levels.length < 1 || levels.length > MAX_LEVELS ) throw new Error( `${ levels.length } levels: an adaptive volume has 1 to ${ MAX_LEVELS }` );
 	const brickCounts = levels.map( ( l ) => l.dims.map( ( d ) => Math.ceil( d / 8 ) ) );
 	const width = Math.max( ...brickCounts.map( ( b ) => b[ 0 ] ) ), height = Math.max( ...brickCounts.map( ( b ) => b[ 1 ] ) );
@@ -280,6 +282,7 @@ export function adaptiveTextures( levels, decoder ) {
 	levels.forEach( ( level, l ) => {
 		const [ bx, by, bz ] = brickCounts[ l ];
 		if ( level.coefficients.length !== level.bricks.length * BRICK_PROBES * perProbe ) throw new Error( `level ${ l }: ${ level.coefficients.length } coefficients for ${ level.bricks.length } bricks of ${ BRICK_PROBES } probes × ${ perProbe }` );
+		if ( visibility && level.visibility.length !== level.bricks.length * BRICK_PROBES * visibilityCount ) throw new Error( `level ${ l }: ${ level.visibility.length } visibility values for ${ level.bricks.length } bricks of ${ BRICK_PROBES } probes × ${ visibilityCount }` );
 		coefficients.set( level.coefficients, slot * BRICK_PROBES * perProbe );
 		if ( visibility ) visibility.set( level.visibility, slot * BRICK_PROBES * visibilityCount );
 		level.bricks.forEach( ( b, s ) => {
@@ -294,8 +297,10 @@ export function adaptiveTextures( levels, decoder ) {
 		slot += level.bricks.length;
 		z += bz;
 	} );
+	const probes = probeTexture( coefficients, visibility, decoder, slots * BRICK_PROBES );
+	if ( probes.height > maxTextureSize || Math.max( width, height, depth ) > maxTextureSize ) throw new Error( `the pool needs ${ probes.height } rows and the indirection ${ width } × ${ height } × ${ depth } texels, beyond this GPU's ${ maxTextureSize }` );
 	return {
-		probes: probeTexture( coefficients, visibility, decoder, slots * BRICK_PROBES ),
+		probes,
 		indirection: { data: indirection, width, height, depth },
 		uniforms: {
 			bakerLevelCount: { type: 'int', value: levels.length },

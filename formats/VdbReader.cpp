@@ -130,11 +130,26 @@ std::vector<std::int64_t> bricksInFile(openvdb::io::File& file, const std::strin
 
 // A uniform volume from its open file.
 Volume readUniform(openvdb::io::File& file, const openvdb::MetaMap& meta, const std::string& path, PartReading parts) {
+  if (meta[kPlacementKey])
+    throw InputError(fmt::format("{}: {} on a volume of one level; a part of an adaptive bake has 2 or more "
+                                 "(baker.levels): the file is damaged",
+                                 path, kPlacementKey));
   const VolumeHeader header = vdbHeader(file, meta, path);
   Volume volume = header.emptyVolume(path, parts);
   readLevelGrids(file, path, "", header.hasProbeStates, volume);
   requireFiniteValues(volume, path);
   return volume;
+}
+
+// The whole bake's placement a shard's part of an adaptive bake records.
+PlacementSummary placementOf(const openvdb::MetaMap& meta, int levels, const std::string& path) {
+  PlacementSummary placement;
+  placement.fingerprint = required<std::string>(meta, kPlacementKey, path);
+  const std::string counts = required<std::string>(meta, kPlacedBricksKey, path);
+  if (!parseBricksPerLevel(counts, placement.bricksPerLevel) || int(placement.bricksPerLevel.size()) != levels)
+    throw InputError(fmt::format("{}: {} \"{}\" is not {} brick counts separated by commas", path, kPlacedBricksKey,
+                                 counts, levels));
+  return placement;
 }
 
 // Every level of an adaptive volume from its open file; the probes held in all levels together
@@ -160,6 +175,7 @@ AdaptiveVolume readLevelsOf(openvdb::io::File& file, const openvdb::MetaMap& met
     readLevelGrids(file, path, levelGridPrefix(level), true, volume.levels.back());
     requireFiniteValues(volume.levels.back(), path);
   }
+  if (volume.coarsest().shard) volume.placement = placementOf(meta, levels, path);
   return volume;
 }
 
@@ -199,6 +215,19 @@ AdaptiveVolume readAdaptiveVdb(const std::string& path) {
     volume.levels.push_back(readUniform(file, meta, path, PartReading::EveryProbe));
     return volume;
   });
+}
+
+int vdbLevelCount(const std::string& path) {
+  openvdb::initialize();
+  try {
+    openvdb::io::File file(path);
+    file.open(false);
+    const int levels = levelCount(*file.getMetadata(), path);
+    file.close();
+    return levels;
+  } catch (const openvdb::Exception& e) {
+    throw InputError(fmt::format("{}: not a readable OpenVDB volume: {}", path, e.what()));
+  }
 }
 
 }  // namespace baker

@@ -15,4 +15,7 @@ Volume readVdb(const std::string& path, PartReading parts = PartReading::EveryPr
 // Every level of a volume written by writeAdaptiveVdb, or the one level of a uniform volume.
 AdaptiveVolume readAdaptiveVdb(const std::string& path);
 
+// How many levels the file holds (baker.levels; 1 without it), from its metadata only.
+int vdbLevelCount(const std::string& path);
+
 }  // namespace baker

@@ -20,7 +20,9 @@
 #include "formats/VolumeHeader.h"
 #include "formats/VolumeLayout.h"
 #include "formats/VolumeMetadata.h"
+#include "volume/PlacementSummary.h"
 #include "volume/ProbeGrid.h"
+#include "volume/StoredBricks.h"
 
 namespace baker {
 namespace {
@@ -53,9 +55,10 @@ typename GridType::Ptr sparseGrid(const Volume& v, const std::vector<bool>& stor
 openvdb::Vec3i vec3i(const Eigen::Vector3i& v) { return {v.x(), v.y(), v.z()}; }
 openvdb::Vec3d vec3d(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
-openvdb::MetaMap fileMetadata(const Volume& v, const Basis& basis) {
+openvdb::MetaMap fileMetadata(const Volume& v, const Basis& basis, bool hasProbeStates) {
   openvdb::MetaMap meta;
-  for (const auto& [key, value] : describingMetadata(v, basis)) meta.insertMeta(key, openvdb::StringMetadata(value));
+  for (const auto& [key, value] : describingMetadata(v, basis, hasProbeStates))
+    meta.insertMeta(key, openvdb::StringMetadata(value));
   const ProbeGrid& g = v.grid;
   meta.insertMeta("baker.coefficients_per_probe", openvdb::Int32Metadata(v.coefficientsPerProbe));
   meta.insertMeta("baker.visibility_per_probe", openvdb::Int32Metadata(v.visibilityPerProbe));
@@ -109,11 +112,11 @@ struct LevelGrids {
 };
 
 void writeLevels(const std::vector<LevelGrids>& levels, const Basis& basis, const openvdb::MetaMap& metadata,
-                 const std::string& path) {
+                 bool hasProbeStates, const std::string& path) {
   for (const LevelGrids& level : levels) requireFiniteVolume(*level.volume);
   openvdb::initialize();
   const Volume& first = *levels.front().volume;
-  const std::vector<VolumeGrid> specs = volumeGrids(basis, first.visibilityPerProbe, !first.states.empty());
+  const std::vector<VolumeGrid> specs = volumeGrids(basis, first.visibilityPerProbe, hasProbeStates);
   const auto gridAt = [&](std::int32_t index) {
     const LevelGrids& level = levels[std::size_t(index) / specs.size()];
     const Volume& volume = *level.volume;
@@ -163,16 +166,27 @@ std::vector<bool> heldBricks(const Volume& level) {
 }  // namespace
 
 void writeVdb(const Volume& volume, const Basis& basis, const std::string& path) {
-  writeLevels({{&volume, "", storedBricks(volume)}}, basis, fileMetadata(volume, basis), path);
+  const bool hasProbeStates = !volume.states.empty();
+  writeLevels({{&volume, "", storedBricks(volume)}}, basis, fileMetadata(volume, basis, hasProbeStates), hasProbeStates,
+              path);
 }
 
 void writeAdaptiveVdb(const AdaptiveVolume& volume, const Basis& basis, const std::string& path) {
-  openvdb::MetaMap metadata = fileMetadata(volume.coarsest(), basis);
+  // Every level has probe states, though a shard's share may hold no probe of some level.
+  openvdb::MetaMap metadata = fileMetadata(volume.coarsest(), basis, /*hasProbeStates=*/true);
   metadata.removeMeta("baker.format_version");
   metadata.insertMeta("baker.format_version", openvdb::StringMetadata(std::to_string(kLevelsFormatVersion)));
   metadata.insertMeta(kLevelsKey, openvdb::Int32Metadata(int(volume.levels.size())));
   metadata.insertMeta("baker.level_ratio", openvdb::Int32Metadata(kLevelRatio));
   metadata.insertMeta("baker.margin_cells", openvdb::Int32Metadata(volume.marginCells));
+  if (volume.placement) {
+    std::int64_t bricks = 0;
+    for (const Volume& level : volume.levels) bricks += std::int64_t(heldBricksInOrder(level).size());
+    metadata.removeMeta("baker.shard.bricks");
+    metadata.insertMeta("baker.shard.bricks", openvdb::StringMetadata(std::to_string(bricks)));
+    metadata.insertMeta(kPlacementKey, openvdb::StringMetadata(volume.placement->fingerprint));
+    metadata.insertMeta(kPlacedBricksKey, openvdb::StringMetadata(bricksPerLevelText(volume.placement->bricksPerLevel)));
+  }
   std::vector<LevelGrids> levels;
   for (std::size_t k = 0; k < volume.levels.size(); ++k) {
     const ProbeGrid& g = volume.levels[k].grid;
@@ -184,7 +198,7 @@ void writeAdaptiveVdb(const AdaptiveVolume& volume, const Basis& basis, const st
     }
     levels.push_back({&volume.levels[k], levelGridPrefix(int(k)), heldBricks(volume.levels[k])});
   }
-  writeLevels(levels, basis, metadata, path);
+  writeLevels(levels, basis, metadata, /*hasProbeStates=*/true, path);
 }
 
 }  // namespace baker

@@ -23,6 +23,10 @@ enum class PartReading { EveryProbe, OwnBricks };
 
 // The key an adaptive volume's file gives its number of levels; a file without it has one.
 constexpr const char* kLevelsKey = "baker.levels";
+// A shard's part of an adaptive bake records the whole bake's placement (PlacementSummary): the
+// hash over every level's placed bricks, and their count per level ("n0,n1,…").
+constexpr const char* kPlacementKey = "baker.shard.placement";
+constexpr const char* kPlacedBricksKey = "baker.shard.placed_bricks";
 // "" for level 0, whose grids are named as a uniform volume's; "levelK/" for a finer level K.
 std::string levelGridPrefix(int level);
 

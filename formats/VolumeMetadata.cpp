@@ -26,8 +26,13 @@ const char* kindName(VolumeGrid::Kind kind) {
 }  // namespace
 
 std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume& volume, const Basis& basis) {
+  return describingMetadata(volume, basis, !volume.states.empty());
+}
+
+std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume& volume, const Basis& basis,
+                                                                    bool hasProbeStates) {
   nlohmann::json layout = nlohmann::json::array();
-  for (const VolumeGrid& g : volumeGrids(basis, volume.visibilityPerProbe, !volume.states.empty())) {
+  for (const VolumeGrid& g : volumeGrids(basis, volume.visibilityPerProbe, hasProbeStates)) {
     nlohmann::json entry = {{"name", g.name}, {"kind", kindName(g.kind)}, {"components", g.components}};
     if (g.kind == VolumeGrid::Kind::Coefficients || g.kind == VolumeGrid::Kind::Visibility)
       entry["index"] = std::vector<int>(g.index, g.index + g.components);

@@ -14,6 +14,10 @@ namespace baker {
 // reconstruct the basis without this code (JSON), the tool version, and the bake settings under
 // "baker.setting.*". The grid placement and per-probe counts are stored natively by each format.
 std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume& volume, const Basis& basis);
+// The same, with the layout listing the probe grids when `hasProbeStates` (an adaptive volume's
+// file has them though its coarsest level, a shard's share, may hold no probe).
+std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume& volume, const Basis& basis,
+                                                                    bool hasProbeStates);
 
 // The same as one JSON object of strings, for formats that keep their metadata in JSON.
 nlohmann::json describingMetadataJson(const Volume& volume, const Basis& basis);

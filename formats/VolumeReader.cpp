@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
 
 #include "common/Error.h"
@@ -39,6 +40,15 @@ Volume readVolume(const std::string& path, PartReading parts) {
   if (format == "bevy") return readBevyIrradianceVolume(path);
   if (format == "threejs") return readThreeJsProbeGrid(path);
   return readVdb(path, parts);
+}
+
+int levelCountOf(const std::string& path) {
+  const std::string format = volumeFormatOf(path);
+  if (format == "vdb") return vdbLevelCount(path);
+  if (format != "exr") return 1;
+  const nlohmann::json manifest = readExrManifest(path);
+  const auto levels = manifest.find(kLevelsManifestKey);
+  return levels != manifest.end() && levels->is_array() ? std::max<int>(1, int(levels->size())) : 1;
 }
 
 AdaptiveVolume readLevels(const std::string& path) {

@@ -19,6 +19,9 @@ Volume readVolume(const std::string& path, PartReading parts = PartReading::Ever
 // Every level of an adaptive volume (an OpenVDB file written by writeAdaptiveVdb), or the one
 // level of a uniform volume in any format readVolume reads.
 AdaptiveVolume readLevels(const std::string& path);
+// How many levels the volume at `path` holds, from its metadata or manifest only: 1 for a
+// uniform volume.
+int levelCountOf(const std::string& path);
 
 // Which format `path` holds, by its name or the files in its directory: "vdb", "exr", "bevy",
 // "threejs". InputError for a directory of none of them or a missing file.

@@ -125,7 +125,10 @@ void requireLevelsWritable(const VolumeOutput& output, int levels) {
 }
 
 EngineExport writeLevels(const AdaptiveVolume& volume, const Basis& basis, const VolumeOutput& output) {
-  if (volume.levels.size() == 1) return writeVolume(volume.levels.front(), basis, output);
+  if (volume.placement && output.format != VolumeFormat::Vdb)
+    throw SettingError("format", fmt::format("{}: a shard's part of an adaptive bake is written to a .vdb file only",
+                                             volumeFormatName(output.format)));
+  if (volume.levels.size() == 1 && !volume.placement) return writeVolume(volume.levels.front(), basis, output);
   requireLevelsWritable(output, int(volume.levels.size()));
   if (output.format == VolumeFormat::Exr)
     writeAdaptiveExrSlices(volume, basis, output.path, output.precision);

@@ -1,11 +1,15 @@
 #include "scaleout/MpiBake.h"
 
+#include <fmt/format.h>
+
 #include <chrono>
 #include <thread>
 
 #include "common/Error.h"
 #include "common/PeakMemory.h"
 #include "common/Timing.h"
+#include "volume/AdaptiveAssembly.h"
+#include "volume/LevelPacking.h"
 #include "volume/MemoryEstimate.h"
 #include "volume/VolumeAssembly.h"
 
@@ -32,6 +36,50 @@ void readSummaries(const std::vector<double>& all, MpiBakeReport& report) {
   }
 }
 
+// bakeWithMpi for an adaptive bake: each rank traces its share of the levels' bricks, rank 0 puts
+// the parts together as `baker merge` does (AdaptiveAssembly) and writes the levels.
+MpiBakeReport bakeLevelsWithMpi(const MpiSession& session, const BakeJob& job, const VolumeOutput& output,
+                                const std::function<void(std::int64_t, std::int64_t)>& progress) {
+  const AdaptivePlacement& placement = *job.placement();
+  // Rank 0 holds every part, then the whole volume (volumeMemoryBytes counts the values twice):
+  // refused before any rank traces.
+  const double rootBytes = volumeMemoryBytes(double(placement.probes()), job.basis());
+  if (session.rank() == 0 && rootBytes > double(physicalMemoryBytes()))
+    throw SettingError("spacing", fmt::format(": rank 0 would hold the parts of {} probes, then the whole volume, "
+                                              "about {:.3g} GiB, more than this machine has; nothing was traced",
+                                              placement.probes(), rootBytes / double(1ull << 30)));
+  MpiBakeReport report;
+  const auto start = std::chrono::steady_clock::now();
+  AdaptiveVolume part = job.bakeLevels(&report.stats, progress);
+  report.bakeSeconds = secondsSince(start);
+  const std::vector<double> summaries = session.gatherToRoot(rankSummary(report, job.request().threads));
+  if (session.rank() != 0) {
+    const std::vector<float> packed = packLevels(part);
+    part = AdaptiveVolume();  // sent as packed: one copy of the share while sending
+    session.sendToRoot(packed);
+    return report;
+  }
+  readSummaries(summaries, report);
+  const auto gatherStart = std::chrono::steady_clock::now();
+  const AdaptiveVolume header = levelsWithoutValues(part);
+  AdaptiveAssembly assembly(part, "rank 0");
+  assembly.add(std::move(part), "rank 0");
+  const auto shares = everyShardsLevelBricks(placement.grids, placement.bricks, session.size());
+  for (int r = 1; r < session.size(); ++r) {
+    const Shard theirs{r, session.size()};
+    const std::vector<std::vector<std::int64_t>>& share = shares[std::size_t(r)];
+    std::vector<float> values(packedLevelsSize(header, share));
+    session.receiveFrom(r, values);
+    assembly.add(unpackLevels(header, theirs, share, values), fmt::format("rank {}", r));
+  }
+  const AdaptiveVolume whole = assembly.finish();
+  report.gatherSeconds = secondsSince(gatherStart);
+  const auto writeStart = std::chrono::steady_clock::now();
+  report.engineExport = writeLevels(whole, job.basis(), output);
+  report.writeSeconds = secondsSince(writeStart);
+  return report;
+}
+
 }  // namespace
 
 int threadsPerRank(const MpiSession& session, int requestedThreads) {
@@ -45,6 +93,7 @@ MpiBakeReport bakeWithMpi(const MpiSession& session, const BakeJob& job, const V
   const std::optional<Shard>& shard = job.request().shard;
   if (!shard || shard->index != session.rank() || shard->count != session.size())
     throw std::logic_error("bakeWithMpi: the job's shard must be rank/size");
+  if (job.placement()) return bakeLevelsWithMpi(session, job, output, progress);
   // Rank 0 will hold the whole volume: refused before it traces (its failure stops every rank),
   // not after hours of baking.
   if (session.rank() == 0) requireVolumeFitsInMemory(job.grid(), 1, job.basis(), physicalMemoryBytes());

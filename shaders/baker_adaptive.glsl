@@ -1,8 +1,10 @@
 // baker_adaptive.glsl — which probes to blend at a point of an adaptive volume (docs/ADAPTIVE.md),
 // the C++ header's finestLevelNeighbourhood on the GPU. Written in the common subset of GLSL ES
 // 3.00 (WebGL 2) and GLSL 4.50: no #version line and no uniforms; include it before the code that
-// reads the probes (baker_irradiance.glsl's BAKER_ADAPTIVE_TEXELS, or baker_irradiance_webgl.js's
-// BAKER_ADAPTIVE_WEBGL_GLSL).
+// reads the probes (baker_irradiance.glsl's BAKER_ADAPTIVE_FETCH, or baker_irradiance_webgl.js's
+// BAKER_ADAPTIVE_WEBGL_GLSL). Needs highp int (slot arithmetic passes 16 bits) and the
+// indirection texture's filters NEAREST without mipmaps, or texelFetch reads an incomplete
+// texture as 0.
 //
 // Textures (docs/DECODERS.md "Adaptive volumes on the GPU"):
 // - The pool: every level's held bricks of 8³ probes, level after level (coarsest first), each
@@ -73,8 +75,8 @@ BakerCorners bakerAdaptiveCorners(vec3 position, highp usampler3D indirection, i
       total += w;
     }
     corners.level = l;
-    if (held) return corners;
-    if (l == 0 && total > 0.0)
+    if (held && l > 0) return corners;
+    if (l == 0 && total > 0.0)  // as the header does, also when every corner is held
       for (int c = 0; c < 8; ++c) corners.weight[c] /= total;
   }
   return corners;

@@ -519,8 +519,8 @@ TEST(AdaptiveBadInput, ClearMessagesAndExitCode2) {
   rejected({"--placement", "sparse"}, "--placement must be uniform or adaptive");
   rejected({"--levels", "2"}, "--levels applies to --placement adaptive only");
   rejected({"--placement", "adaptive", "--format", "bevy", "--out", "x_bevy"}, "levels are written to a .vdb file or EXR slices only");
-  rejected({"--placement", "adaptive", "--shard", "0/2"}, "not cut into shards yet");
-  rejected({"--placement", "adaptive", "--mpi"}, "--placement adaptive is not baked over MPI yet");
+  rejected({"--placement", "adaptive", "--levels", "1", "--shard", "0/2"}, "an adaptive bake of one level");
+  rejected({"--placement", "adaptive", "--shard", "0/2", "--format", "exr"}, "a shard's part of an adaptive bake is a .vdb file");
   EXPECT_FALSE(std::filesystem::exists(dir + "/x_bevy"));
 
   const test::ProcessResult bake =

@@ -8,17 +8,6 @@
 namespace baker {
 namespace {
 
-bool onBorder(const ProbeGrid& g, const std::vector<bool>& placed, int i, int j, int k) {
-  for (int dz = -1; dz <= 1; ++dz)
-    for (int dy = -1; dy <= 1; ++dy)
-      for (int dx = -1; dx <= 1; ++dx) {
-        const int a = i + dx, b = j + dy, c = k + dz;
-        if (a < 0 || b < 0 || c < 0 || a >= g.dims.x() || b >= g.dims.y() || c >= g.dims.z()) continue;
-        if (!placed[std::size_t(g.brickOf(a, b, c))]) return true;
-      }
-  return false;
-}
-
 // Every held probe of `level`, in parallel over its bricks: f(i, j, k, row).
 template <typename F>
 void forEachHeldProbe(const Volume& level, const F& f) {
@@ -34,6 +23,17 @@ void forEachHeldProbe(const Volume& level, const F& f) {
 
 }  // namespace
 
+bool onLevelBorder(const ProbeGrid& g, const std::vector<bool>& placed, int i, int j, int k) {
+  for (int dz = -1; dz <= 1; ++dz)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int a = i + dx, b = j + dy, c = k + dz;
+        if (a < 0 || b < 0 || c < 0 || a >= g.dims.x() || b >= g.dims.y() || c >= g.dims.z()) continue;
+        if (!placed[std::size_t(g.brickOf(a, b, c))]) return true;
+      }
+  return false;
+}
+
 std::vector<bool> placedBricks(const ProbeGrid& grid, const std::vector<std::int64_t>& bricks) {
   std::vector<bool> placed(std::size_t(grid.brickCount()), false);
   for (const std::int64_t b : bricks) placed[std::size_t(b)] = true;
@@ -42,7 +42,7 @@ std::vector<bool> placedBricks(const ProbeGrid& grid, const std::vector<std::int
 
 void markLevelBorder(Volume& level, const std::vector<bool>& placed) {
   forEachHeldProbe(level, [&](int i, int j, int k, std::int64_t row) {
-    if (onBorder(level.grid, placed, i, j, k)) level.states[std::size_t(row)] = ProbeState::Interpolated;
+    if (onLevelBorder(level.grid, placed, i, j, k)) level.states[std::size_t(row)] = ProbeState::Interpolated;
   });
 }
 

@@ -9,6 +9,10 @@ namespace baker {
 // Per linear brick index of `grid`: whether `bricks` (a level's placement) holds it.
 std::vector<bool> placedBricks(const ProbeGrid& grid, const std::vector<std::int64_t>& bricks);
 
+// Whether probe (i, j, k) of `grid` has one of its 26 neighbours inside the grid in a brick
+// `placed` does not hold: a border probe of a finer level.
+bool onLevelBorder(const ProbeGrid& grid, const std::vector<bool>& placed, int i, int j, int k);
+
 // Marks ProbeState::Interpolated the border probes of a finer level's held bricks: those with one
 // of their 26 neighbours inside the grid in a brick `placed` does not hold. Decided by the
 // placement alone, so that a shard holding some of the level's bricks marks the same probes as

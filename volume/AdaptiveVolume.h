@@ -1,8 +1,10 @@
 #pragma once
 #include <Eigen/Core>
+#include <optional>
 #include <vector>
 
 #include "volume/LevelGrids.h"
+#include "volume/PlacementSummary.h"
 #include "volume/ProbeInterpolation.h"
 #include "volume/Volume.h"
 
@@ -16,6 +18,11 @@ namespace baker {
 struct AdaptiveVolume {
   std::vector<Volume> levels;
   int marginCells = kDefaultMarginCells;
+  // On a shard's part (its levels' Volume::shard set): the whole bake's placement. Each level of
+  // a part holds the bricks of the shard's share (shardLevelBricks), every probe traced but
+  // border probes (Interpolated, values to come) and Invalid ones (unfilled): finishAdaptiveLevels
+  // runs when the parts are merged.
+  std::optional<PlacementSummary> placement;
 
   const Volume& coarsest() const { return levels.front(); }
 };

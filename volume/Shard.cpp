@@ -66,6 +66,48 @@ std::vector<std::int64_t> shardBricks(const ProbeGrid& grid, const Shard& shard)
           order.begin() + shardStart(n, shard.index + 1, shard.count)};
 }
 
+std::vector<std::vector<std::vector<std::int64_t>>> everyShardsLevelBricks(
+    const std::vector<ProbeGrid>& grids, const std::vector<std::vector<std::int64_t>>& placed, int count) {
+  std::int64_t total = 0;
+  for (const std::vector<std::int64_t>& bricks : placed) total += std::int64_t(bricks.size());
+  std::vector<std::vector<std::vector<std::int64_t>>> shares(std::size_t(count),
+                                                            std::vector<std::vector<std::int64_t>>(placed.size()));
+  std::int64_t rank = 0;  // of the brick in the order over every level
+  int shard = 0;
+  for (std::size_t level = 0; level < placed.size(); ++level) {
+    std::vector<bool> isPlaced(std::size_t(grids[level].brickCount()), false);
+    for (const std::int64_t b : placed[level]) isPlaced[std::size_t(b)] = true;
+    for (const std::int64_t b : bricksInMortonOrder(grids[level])) {
+      if (!isPlaced[std::size_t(b)]) continue;
+      while (rank >= shardStart(total, shard + 1, count)) ++shard;
+      shares[std::size_t(shard)][level].push_back(b);
+      ++rank;
+    }
+  }
+  for (auto& share : shares)
+    for (std::vector<std::int64_t>& bricks : share) std::sort(bricks.begin(), bricks.end());
+  return shares;
+}
+
+std::vector<std::vector<std::int64_t>> shardLevelBricks(const std::vector<ProbeGrid>& grids,
+                                                        const std::vector<std::vector<std::int64_t>>& placed,
+                                                        const Shard& shard) {
+  return everyShardsLevelBricks(grids, placed, shard.count)[std::size_t(shard.index)];
+}
+
+std::vector<std::int64_t> shardLevelBrickCounts(const std::vector<std::int64_t>& placedPerLevel, const Shard& shard) {
+  std::int64_t total = 0;
+  for (const std::int64_t n : placedPerLevel) total += n;
+  const std::int64_t first = shardStart(total, shard.index, shard.count), end = shardStart(total, shard.index + 1, shard.count);
+  std::vector<std::int64_t> counts;
+  std::int64_t rank = 0;
+  for (const std::int64_t n : placedPerLevel) {
+    counts.push_back(std::max<std::int64_t>(0, std::min(end, rank + n) - std::max(first, rank)));
+    rank += n;
+  }
+  return counts;
+}
+
 std::vector<int> shardOfBricks(const ProbeGrid& grid, int count) {
   const std::vector<std::int64_t> order = bricksInMortonOrder(grid);
   const std::int64_t n = std::int64_t(order.size());

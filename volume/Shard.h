@@ -35,6 +35,18 @@ std::vector<std::int64_t> bricksInMortonOrder(const ProbeGrid& grid);
 // shards may hold none.
 std::vector<std::int64_t> shardBricks(const ProbeGrid& grid, const Shard& shard);
 
+// The bricks of `shard` of an adaptive bake, per level: every level's placed bricks (`placed`, per
+// level by increasing index), coarsest level first and each level's in the Morton order of its
+// grid, cut as shardBricks cuts one grid's bricks. Per level by increasing index.
+std::vector<std::vector<std::int64_t>> shardLevelBricks(const std::vector<ProbeGrid>& grids,
+                                                        const std::vector<std::vector<std::int64_t>>& placed,
+                                                        const Shard& shard);
+// shardLevelBricks of every shard of `count` at once (for MPI's rank 0): [shard][level].
+std::vector<std::vector<std::vector<std::int64_t>>> everyShardsLevelBricks(
+    const std::vector<ProbeGrid>& grids, const std::vector<std::vector<std::int64_t>>& placed, int count);
+// How many of each level's placed bricks (`placedPerLevel`) shard `shard`'s share holds.
+std::vector<std::int64_t> shardLevelBrickCounts(const std::vector<std::int64_t>& placedPerLevel, const Shard& shard);
+
 // Which shard of `count` holds each brick of `grid` (indexed by linear brick index).
 std::vector<int> shardOfBricks(const ProbeGrid& grid, int count);
 

@@ -17,7 +17,8 @@ InputError notAPart(const std::string& name) {
 
 std::string vectorText(const Eigen::Vector3d& v) { return fmt::format("({:.17g}, {:.17g}, {:.17g})", v.x(), v.y(), v.z()); }
 
-// InputError naming `name` and the first field in which `part` is not the same bake as `first`.
+}  // namespace
+
 void requireSameBake(const Volume& part, const std::string& name, const Volume& first, const std::string& firstName) {
   const auto mismatch = [&](const std::string& field, const std::string& here, const std::string& there) {
     throw InputError(fmt::format("{}: {} is {}, but {} has {}: the parts are not of one bake", name, field, here,
@@ -52,31 +53,49 @@ void requireSameBake(const Volume& part, const std::string& name, const Volume& 
         mismatch("baker.setting." + key, setting(part, key), setting(first, key));
 }
 
-}  // namespace
 
-VolumeAssembly::VolumeAssembly(const Volume& first, const std::string& firstName) : firstName_(firstName) {
-  if (!first.shard)
-    throw notAPart(firstName);
-  whole_.grid = first.grid;
-  whole_.basisName = first.basisName;
-  whole_.coefficientsPerProbe = first.coefficientsPerProbe;
-  whole_.visibilityPerProbe = first.visibilityPerProbe;
-  whole_.settings = first.settings;
-  whole_.shard = first.shard;
-  const std::size_t probes = std::size_t(first.grid.probeCount());
-  whole_.coefficients.assign(probes * first.coefficientsPerProbe, 0.0f);
-  whole_.visibility.assign(probes * first.visibilityPerProbe, 0.0f);
-  whole_.states.assign(probes, ProbeState::Invalid);
-  whole_.offsets.assign(probes, Eigen::Vector3f::Zero());
-  given_.assign(std::size_t(first.shard->count), "");
+Volume volumeWithoutValues(const Volume& volume) {
+  Volume header;
+  header.grid = volume.grid;
+  header.basisName = volume.basisName;
+  header.coefficientsPerProbe = volume.coefficientsPerProbe;
+  header.visibilityPerProbe = volume.visibilityPerProbe;
+  header.settings = volume.settings;
+  header.shard = volume.shard;
+  return header;
 }
 
-void VolumeAssembly::claim(const Shard& shard, const std::string& name) {
-  std::string& holder = given_[std::size_t(shard.index)];
+void holdZeroProbes(Volume& volume) {
+  const std::size_t probes = std::size_t(volume.rows.count(volume.grid));
+  volume.coefficients.assign(probes * volume.coefficientsPerProbe, 0.0f);
+  volume.visibility.assign(probes * volume.visibilityPerProbe, 0.0f);
+  volume.states.assign(probes, ProbeState::Invalid);
+  volume.offsets.assign(probes, Eigen::Vector3f::Zero());
+}
+
+void claimShard(std::vector<std::string>& given, const Shard& shard, const std::string& name) {
+  std::string& holder = given[std::size_t(shard.index)];
   if (!holder.empty())
     throw InputError(fmt::format("{}: shard {} is given twice (also by {}); give each part once", name,
                                  shardName(shard), holder));
   holder = name;
+}
+
+void requireEveryShard(const std::vector<std::string>& given) {
+  std::vector<std::string> missing;
+  for (std::size_t s = 0; s < given.size(); ++s)
+    if (given[s].empty()) missing.push_back(fmt::format("{}/{}", s, given.size()));
+  if (!missing.empty())
+    throw InputError(fmt::format("shard{} {} missing: every part of the bake must be given once",
+                                 missing.size() > 1 ? "s" : "", fmt::join(missing, ", ")));
+}
+
+VolumeAssembly::VolumeAssembly(const Volume& first, const std::string& firstName) : firstName_(firstName) {
+  if (!first.shard)
+    throw notAPart(firstName);
+  whole_ = volumeWithoutValues(first);
+  holdZeroProbes(whole_);
+  given_.assign(std::size_t(first.shard->count), "");
 }
 
 void VolumeAssembly::add(const Volume& part, const std::string& name) {
@@ -87,14 +106,14 @@ void VolumeAssembly::add(const Volume& part, const std::string& name) {
   // partition: its reader refused those, reading the part as its own bricks only.
   if (part.rows.holdsEveryProbe())
     throw std::logic_error("VolumeAssembly::add: read parts with PartReading::OwnBricks");
-  claim(shard, name);
+  claimShard(given_, shard, name);
   copyBricks(part, shard);
 }
 
 void VolumeAssembly::addBaked(const Volume& part) {
   if (!part.shard || part.shard->count != whole_.shard->count || part.grid.dims != whole_.grid.dims)
     throw std::logic_error("VolumeAssembly::addBaked: not a part of this bake");
-  claim(*part.shard, "shard " + shardName(*part.shard));
+  claimShard(given_, *part.shard, "shard " + shardName(*part.shard));
   copyBricks(part, *part.shard);
 }
 
@@ -114,7 +133,7 @@ void VolumeAssembly::copyBricks(const Volume& part, const Shard& shard) {
 void VolumeAssembly::addPacked(const Shard& shard, const std::vector<float>& packed) {
   if (shard.count != whole_.shard->count)
     throw InputError(fmt::format("shard {}: the bake has {} shards", shardName(shard), whole_.shard->count));
-  claim(shard, "shard " + shardName(shard));
+  claimShard(given_, shard, "shard " + shardName(shard));
   const std::vector<std::int64_t> bricks = shardBricks(whole_.grid, shard);
   const int nc = whole_.coefficientsPerProbe, nv = whole_.visibilityPerProbe;
   if (packed.size() != packedSize(whole_.grid, bricks, nc, nv))
@@ -136,12 +155,7 @@ void VolumeAssembly::addPacked(const Shard& shard, const std::vector<float>& pac
 }
 
 Volume VolumeAssembly::finish() {
-  std::vector<std::string> missing;
-  for (std::size_t s = 0; s < given_.size(); ++s)
-    if (given_[s].empty()) missing.push_back(fmt::format("{}/{}", s, given_.size()));
-  if (!missing.empty())
-    throw InputError(fmt::format("shard{} {} missing: every part of the bake must be given once",
-                                 missing.size() > 1 ? "s" : "", fmt::join(missing, ", ")));
+  requireEveryShard(given_);
   fillInvalidProbes(whole_.grid, whole_.states, whole_.coefficientsPerProbe, whole_.coefficients);
   fillInvalidProbes(whole_.grid, whole_.states, whole_.visibilityPerProbe, whole_.visibility);
   whole_.shard.reset();

@@ -30,7 +30,6 @@ class VolumeAssembly {
   Volume finish();
 
  private:
-  void claim(const Shard& shard, const std::string& name);
   // The values of `shard`'s bricks from `part`, straight into the whole volume (no packed copy).
   void copyBricks(const Volume& part, const Shard& shard);
 
@@ -38,6 +37,20 @@ class VolumeAssembly {
   std::string firstName_;
   std::vector<std::string> given_;  // per shard: the part that holds it, "" until given
 };
+
+// `volume`'s grid, basis, numbers per probe, settings and shard, without values or rows.
+Volume volumeWithoutValues(const Volume& volume);
+// Sizes `volume`'s arrays for the probes its rows hold: zeros, every probe Invalid.
+void holdZeroProbes(Volume& volume);
+// Records that part `name` gives `shard` (`given`: per shard, the part that gave it, or "");
+// InputError when another part gave it already.
+void claimShard(std::vector<std::string>& given, const Shard& shard, const std::string& name);
+// InputError listing the shards no part gave.
+void requireEveryShard(const std::vector<std::string>& given);
+
+// InputError naming `name` and the first field in which `part` is not a part of the same bake
+// as `first` (the shard count, basis, grid, every setting), or not a part at all.
+void requireSameBake(const Volume& part, const std::string& name, const Volume& first, const std::string& firstName);
 
 // A part's values for its shard's bricks, probe by probe in brick order: state, offset (3),
 // coefficients, sky visibility; what a rank sends to the rank that writes the volume.

@@ -1,0 +1,70 @@
+#include "volume/LevelPacking.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "common/Error.h"
+#include "volume/StoredBricks.h"
+#include "volume/VolumeAssembly.h"
+
+namespace baker {
+
+std::vector<float> packLevels(const AdaptiveVolume& part) {
+  std::vector<float> packed;
+  for (const Volume& level : part.levels) {
+    const std::vector<float> values = packBricks(level, heldBricksInOrder(level));
+    packed.insert(packed.end(), values.begin(), values.end());
+  }
+  return packed;
+}
+
+std::size_t packedLevelsSize(const AdaptiveVolume& like, const std::vector<std::vector<std::int64_t>>& share) {
+  std::size_t size = 0;
+  for (std::size_t k = 0; k < like.levels.size(); ++k) {
+    const Volume& level = like.levels[k];
+    size += packedSize(level.grid, share[k], level.coefficientsPerProbe, level.visibilityPerProbe);
+  }
+  return size;
+}
+
+AdaptiveVolume levelsWithoutValues(const AdaptiveVolume& like) {
+  AdaptiveVolume header;
+  header.marginCells = like.marginCells;
+  header.placement = like.placement;
+  for (const Volume& level : like.levels) header.levels.push_back(volumeWithoutValues(level));
+  return header;
+}
+
+AdaptiveVolume unpackLevels(const AdaptiveVolume& like, const Shard& shard,
+                            const std::vector<std::vector<std::int64_t>>& share, const std::vector<float>& packed) {
+  if (packed.size() != packedLevelsSize(like, share))
+    throw InputError(fmt::format("shard {}: {} values received, {} expected", shardName(shard), packed.size(),
+                                 packedLevelsSize(like, share)));
+  AdaptiveVolume part = levelsWithoutValues(like);
+  const float* in = packed.data();
+  for (std::size_t k = 0; k < part.levels.size(); ++k) {
+    Volume& level = part.levels[k];
+    const ProbeGrid& grid = level.grid;
+    level.shard = shard;
+    if (std::int64_t(share[k].size()) < grid.brickCount()) level.rows = ProbeRows(grid, share[k]);
+    holdZeroProbes(level);
+    const int nc = level.coefficientsPerProbe, nv = level.visibilityPerProbe;
+    for (const std::int64_t b : share[k])
+      for (const std::int64_t p : probesOfBrick(grid, b)) {
+        const std::int64_t r = level.rowOf(p);
+        const float state = *in++;
+        if (!(state >= 0.0f && state < float(kProbeStateCount) && state == float(int(state))))
+          throw InputError(fmt::format("shard {}: probe {} of level {} has state {}", shardName(shard), p, k, state));
+        level.states[std::size_t(r)] = ProbeState(std::uint8_t(state));
+        for (int c = 0; c < 3; ++c) level.offsets[std::size_t(r)][c] = *in++;
+        std::copy_n(in, nc, level.coefficients.begin() + r * nc);
+        in += nc;
+        std::copy_n(in, nv, level.visibility.begin() + r * nv);
+        in += nv;
+      }
+  }
+  return part;
+}
+
+}  // namespace baker
