@@ -59,8 +59,9 @@ AdaptiveVolume bakeAdaptive(const Scene& scene, const RayTracer& tracer, const B
     volume.placement = summarizePlacement(placement.bricks);
   } else {
     finishAdaptiveLevels(volume);
-    for (const Volume& level : volume.levels) requireFiniteBake(level);
   }
+  // A part's too: a rank sends its values unchecked, and the merge's fill would spread a NaN.
+  for (const Volume& level : volume.levels) requireFiniteBake(level);
   std::vector<const Volume*> levels;
   for (const Volume& level : volume.levels) levels.push_back(&level);
   baker.finishStats(levels, stats);

@@ -34,6 +34,17 @@ std::int64_t probesHeld(const AdaptiveVolume& volume) {
 }
 
 // Per level: its grid and what it holds; adds each probe's state to `counts`.
+// A part's bricks and the whole bake's: its shard's run of the grid, or for an adaptive bake's
+// part the bricks its levels hold out of every level's placed ones.
+std::pair<std::int64_t, std::int64_t> partBricks(const AdaptiveVolume& volume, const nlohmann::json& levels) {
+  const Volume& v = volume.coarsest();
+  if (!volume.placement) return {std::int64_t(shardBricks(v.grid, *v.shard).size()), v.grid.brickCount()};
+  std::int64_t held = 0, placed = 0;
+  for (const nlohmann::json& level : levels) held += level["bricks"].get<std::int64_t>();
+  for (const std::int64_t n : volume.placement->bricksPerLevel) placed += n;
+  return {held, placed};
+}
+
 nlohmann::json levelsJson(const AdaptiveVolume& volume, std::int64_t (&counts)[kProbeStateCount]) {
   nlohmann::json levels = nlohmann::json::array();
   for (std::size_t k = 0; k < volume.levels.size(); ++k) {
@@ -150,7 +161,7 @@ int runInspectCommand(int argc, char** argv) {
           {"grids", grids},
           {"settings", v.settings},
           {"shard", v.shard ? nlohmann::json{{"index", v.shard->index}, {"count", v.shard->count},
-                                             {"bricks", shardBricks(g, *v.shard).size()}}
+                                             {"bricks", partBricks(volume, levels).first}}
                             : nlohmann::json(nullptr)}};
       std::cout << j.dump(2) << "\n";
       return 0;
@@ -161,7 +172,7 @@ int runInspectCommand(int argc, char** argv) {
     if (v.shard)
       std::cout << fmt::format("part: shard {} of a bake ({} of {} bricks); probes outside it count as invalid here, "
                                "and invalid probes are filled when the parts are merged (baker merge)\n",
-                               shardName(*v.shard), shardBricks(g, *v.shard).size(), g.brickCount());
+                               shardName(*v.shard), partBricks(volume, levels).first, partBricks(volume, levels).second);
     if (volume.levels.size() > 1) {
       std::cout << fmt::format("adaptive: {} levels, spacing ×{} per level, refined within {} cell(s) of geometry\n",
                                volume.levels.size(), kLevelRatio, volume.marginCells);

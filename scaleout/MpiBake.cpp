@@ -43,11 +43,15 @@ MpiBakeReport bakeLevelsWithMpi(const MpiSession& session, const BakeJob& job, c
   const AdaptivePlacement& placement = *job.placement();
   // Rank 0 holds every part, then the whole volume (volumeMemoryBytes counts the values twice):
   // refused before any rank traces.
-  const double rootBytes = volumeMemoryBytes(double(placement.probes()), job.basis());
+  // As AdaptiveAssembly estimates it (whole bricks), so that it cannot refuse after the ranks traced.
+  double placedProbes = 0.0;
+  for (const std::vector<std::int64_t>& bricks : placement.bricks)
+    placedProbes += double(bricks.size()) * kBrickSize * kBrickSize * kBrickSize;
+  const double rootBytes = volumeMemoryBytes(placedProbes, job.basis());
   if (session.rank() == 0 && rootBytes > double(physicalMemoryBytes()))
     throw SettingError("spacing", fmt::format(": rank 0 would hold the parts of {} probes, then the whole volume, "
                                               "about {:.3g} GiB, more than this machine has; nothing was traced",
-                                              placement.probes(), rootBytes / double(1ull << 30)));
+                                              std::int64_t(placedProbes), rootBytes / double(1ull << 30)));
   MpiBakeReport report;
   const auto start = std::chrono::steady_clock::now();
   AdaptiveVolume part = job.bakeLevels(&report.stats, progress);

@@ -17,6 +17,7 @@
 #include "volume/AdaptiveFinish.h"
 #include "volume/Shard.h"
 #include "volume/StoredBricks.h"
+#include "volume/VolumeAssembly.h"
 
 // An adaptive bake cut into shards (or run over MPI ranks), put together, must be the
 // one-process bake byte for byte; the merge refuses parts that are not one bake, once each.
@@ -100,6 +101,16 @@ TEST(AdaptiveShardLevels, EveryPlacedBrickInExactlyOneShard) {
     }
     EXPECT_LE(largest - smallest, 1u) << count << " shards: as even as whole bricks allow";
   }
+  // What the merge expects of each part, from the counts alone.
+  const std::vector<std::int64_t> perLevel = {std::int64_t(placed[0].size()), std::int64_t(placed[1].size())};
+  for (int count = 1; count <= 60; ++count) {
+    const auto shares = everyShardsLevelBricks(grids, placed, count);
+    for (int k = 0; k < count; ++k) {
+      const std::vector<std::int64_t> counts = shardLevelBrickCounts(perLevel, {k, count});
+      for (std::size_t level = 0; level < 2; ++level)
+        EXPECT_EQ(counts[level], std::int64_t(shares[std::size_t(k)][level].size())) << k << "/" << count;
+    }
+  }
 }
 
 TEST(AdaptiveShardLevels, BorderProbesDependOnThePlacementNotTheShare) {
@@ -125,6 +136,32 @@ TEST(AdaptiveShardLevels, BorderProbesDependOnThePlacementNotTheShare) {
   for (int i = 8; i < 16; ++i)
     EXPECT_EQ(whole.states[std::size_t(whole.rows.row(grid, i, 3, 3))],
               i == 15 ? ProbeState::Interpolated : ProbeState::Valid);
+}
+
+// `part` with level k's brick `drop` replaced by `add`, its values from `source` where it holds
+// them (zeros and Invalid otherwise): the same count of bricks, another set.
+AdaptiveVolume withBrickSwapped(const AdaptiveVolume& part, std::size_t k, std::int64_t drop, std::int64_t add,
+                                const Volume& source) {
+  AdaptiveVolume out = part;
+  const Volume& from = part.levels[k];
+  const ProbeGrid& grid = from.grid;
+  std::vector<std::int64_t> bricks = heldBricksInOrder(from);
+  *std::find(bricks.begin(), bricks.end(), drop) = add;
+  std::sort(bricks.begin(), bricks.end());
+  Volume level = volumeWithoutValues(from);
+  level.rows = ProbeRows(grid, bricks);
+  holdZeroProbes(level);
+  for (const std::int64_t b : bricks) {
+    const Volume& values = b == add ? source : from;
+    if (!values.rows.holdsBrick(b)) continue;
+    for (const std::int64_t p : probesOfBrick(grid, b)) {
+      const std::int64_t to = level.rowOf(p), at = values.rowOf(p);
+      level.states[std::size_t(to)] = values.states[std::size_t(at)];
+      std::copy_n(values.probe(p), level.coefficientsPerProbe, level.coefficients.begin() + to * level.coefficientsPerProbe);
+    }
+  }
+  out.levels[k] = std::move(level);
+  return out;
 }
 
 class AdaptiveShards : public ::testing::Test {
@@ -262,6 +299,25 @@ TEST_F(AdaptiveShards, MergeRefusesADamagedPart) {
   }
   writeAdaptiveVdb(fewer, *basis, dir_ + "/fewer.vdb");
   expectRefused({parts_[0], parts_[1], dir_ + "/fewer.vdb"}, "fewer.vdb: level ");
+
+  // The right counts, but a brick swapped: for another part's, then for one the bake never placed.
+  const AdaptiveVolume other = readLevels(parts_[1]);
+  const std::size_t k = part.levels.size() - 1;
+  const std::vector<std::int64_t> mine = heldBricksInOrder(part.levels[k]), theirs = heldBricksInOrder(other.levels[k]);
+  ASSERT_FALSE(mine.empty());
+  ASSERT_FALSE(theirs.empty());
+  writeAdaptiveVdb(withBrickSwapped(part, k, mine.front(), theirs.front(), other.levels[k]), *basis,
+                   dir_ + "/doubled.vdb");
+  expectRefused({parts_[0], parts_[1], dir_ + "/doubled.vdb"}, "is also in");
+  std::vector<std::int64_t> placed;
+  for (const std::string& p : parts_)
+    for (const std::int64_t b : heldBricksInOrder(readLevels(p).levels[k])) placed.push_back(b);
+  std::sort(placed.begin(), placed.end());
+  std::int64_t unplaced = 0;
+  while (std::binary_search(placed.begin(), placed.end(), unplaced)) ++unplaced;
+  ASSERT_LT(unplaced, part.levels[k].grid.brickCount());
+  writeAdaptiveVdb(withBrickSwapped(part, k, mine.front(), unplaced, other.levels[k]), *basis, dir_ + "/stray.vdb");
+  expectRefused({parts_[0], parts_[1], dir_ + "/stray.vdb"}, "are not the placement their files record");
 }
 
 TEST(AdaptiveMpi, TwoRanksWriteTheOneProcessBake) {

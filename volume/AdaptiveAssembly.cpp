@@ -85,21 +85,25 @@ void AdaptiveAssembly::add(AdaptiveVolume part, const std::string& name) {
   names_.push_back(name);
 }
 
-// Level `index` of the whole bake from the parts' bricks of it, which the parts then let go.
-Volume AdaptiveAssembly::level(int index) {
-  const std::size_t k = std::size_t(index);
-  const ProbeGrid& grid = first_.levels[k].grid;
+// Which part holds each brick of level `index`, by brick; InputError when two parts hold one.
+std::vector<std::pair<std::int64_t, std::size_t>> AdaptiveAssembly::owners(int index) const {
   std::vector<std::pair<std::int64_t, std::size_t>> owners;  // (brick, part)
   for (std::size_t p = 0; p < parts_.size(); ++p)
-    for (const std::int64_t b : heldBricksInOrder(parts_[p].levels[k])) owners.push_back({b, p});
+    for (const std::int64_t b : heldBricksInOrder(parts_[p].levels[std::size_t(index)])) owners.push_back({b, p});
   std::sort(owners.begin(), owners.end());
-  std::vector<std::int64_t> bricks;
-  for (std::size_t n = 0; n < owners.size(); ++n) {
-    if (n > 0 && owners[n].first == owners[n - 1].first)
+  for (std::size_t n = 1; n < owners.size(); ++n)
+    if (owners[n].first == owners[n - 1].first)
       throw InputError(fmt::format("{}: brick {} of level {} is also in {}; the parts are not one partition of the bake",
                                    names_[owners[n].second], owners[n].first, index, names_[owners[n - 1].second]));
-    bricks.push_back(owners[n].first);
-  }
+  return owners;
+}
+
+// Level `index` of the whole bake from the parts' bricks of it (`owners`), which the parts then let go.
+Volume AdaptiveAssembly::level(int index, const std::vector<std::pair<std::int64_t, std::size_t>>& owners) {
+  const std::size_t k = std::size_t(index);
+  const ProbeGrid& grid = first_.levels[k].grid;
+  std::vector<std::int64_t> bricks;
+  for (const auto& owner : owners) bricks.push_back(owner.first);
   Volume whole = first_.levels[k];
   whole.shard.reset();
   if (std::int64_t(bricks.size()) < grid.brickCount()) whole.rows = ProbeRows(grid, bricks);
@@ -146,20 +150,24 @@ void AdaptiveAssembly::requireBorderStates(const Volume& level, int index, const
 
 AdaptiveVolume AdaptiveAssembly::finish() {
   requireEveryShard(given_);
-  AdaptiveVolume whole;
-  whole.marginCells = first_.marginCells;
+  // The placement first, from the parts' brick lists alone: a brick outside it is named before
+  // the levels are put together.
+  std::vector<std::vector<std::pair<std::int64_t, std::size_t>>> owned;
   std::vector<std::vector<std::int64_t>> placed;
   for (int k = 0; k < int(first_.levels.size()); ++k) {
-    whole.levels.push_back(level(k));
-    placed.push_back(heldBricksInOrder(whole.levels.back()));
+    owned.push_back(owners(k));
+    placed.emplace_back();
+    for (const auto& owner : owned.back()) placed.back().push_back(owner.first);
   }
-  if (!(summarizePlacement(placed) == *first_.placement))
+  const PlacementSummary together = summarizePlacement(placed);
+  if (!(together == *first_.placement))
     throw InputError(fmt::format("{} and the other parts: their bricks ({} per level, hash {}) are not the placement "
                                  "their files record ({}, hash {}): a part is damaged or of another bake",
-                                 firstName_,
-                                 bricksPerLevelText(summarizePlacement(placed).bricksPerLevel),
-                                 summarizePlacement(placed).fingerprint,
+                                 firstName_, bricksPerLevelText(together.bricksPerLevel), together.fingerprint,
                                  bricksPerLevelText(first_.placement->bricksPerLevel), first_.placement->fingerprint));
+  AdaptiveVolume whole;
+  whole.marginCells = first_.marginCells;
+  for (int k = 0; k < int(first_.levels.size()); ++k) whole.levels.push_back(level(k, owned[std::size_t(k)]));
   parts_.clear();
   finishAdaptiveLevels(whole);
   return whole;

@@ -25,7 +25,8 @@ class AdaptiveAssembly {
   AdaptiveVolume finish();
 
  private:
-  Volume level(int index);
+  std::vector<std::pair<std::int64_t, std::size_t>> owners(int index) const;
+  Volume level(int index, const std::vector<std::pair<std::int64_t, std::size_t>>& owners);
   void requireBorderStates(const Volume& level, int index, const std::vector<std::int64_t>& bricks,
                            const std::vector<std::pair<std::int64_t, std::size_t>>& owners) const;
 

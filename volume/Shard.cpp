@@ -43,20 +43,32 @@ std::optional<Shard> parseShard(const std::string& text) {
   return shard;
 }
 
-std::vector<std::int64_t> bricksInMortonOrder(const ProbeGrid& grid) {
-  const Eigen::Vector3i b = grid.brickCounts();
+namespace {
+
+// `bricks` of `grid` in Morton order of their brick coordinates: an adaptive level's placed
+// bricks alone, not the whole grid's, which a fine level may have far more of.
+std::vector<std::int64_t> inMortonOrder(const ProbeGrid& grid, const std::vector<std::int64_t>& bricks) {
   std::vector<std::pair<std::uint64_t, std::int64_t>> keyed;
-  keyed.reserve(std::size_t(b.x()) * b.y() * b.z());
-  for (int z = 0; z < b.z(); ++z)
-    for (int y = 0; y < b.y(); ++y)
-      for (int x = 0; x < b.x(); ++x)
-        keyed.push_back({spreadBits(x) | spreadBits(y) << 1 | spreadBits(z) << 2,
-                         x + std::int64_t(b.x()) * (y + std::int64_t(b.y()) * z)});
+  keyed.reserve(bricks.size());
+  for (const std::int64_t b : bricks) {
+    const Eigen::Vector3i c = grid.brickCorner(b) / kBrickSize;
+    keyed.push_back({spreadBits(std::uint64_t(c.x())) | spreadBits(std::uint64_t(c.y())) << 1 |
+                         spreadBits(std::uint64_t(c.z())) << 2,
+                     b});
+  }
   // Codes are unique (brick coordinates are below 2^21), so the order is total.
   std::sort(keyed.begin(), keyed.end());
   std::vector<std::int64_t> order(keyed.size());
   std::transform(keyed.begin(), keyed.end(), order.begin(), [](const auto& k) { return k.second; });
   return order;
+}
+
+}  // namespace
+
+std::vector<std::int64_t> bricksInMortonOrder(const ProbeGrid& grid) {
+  std::vector<std::int64_t> all(std::size_t(grid.brickCount()));
+  for (std::size_t b = 0; b < all.size(); ++b) all[b] = std::int64_t(b);
+  return inMortonOrder(grid, all);
 }
 
 std::vector<std::int64_t> shardBricks(const ProbeGrid& grid, const Shard& shard) {
@@ -75,10 +87,7 @@ std::vector<std::vector<std::vector<std::int64_t>>> everyShardsLevelBricks(
   std::int64_t rank = 0;  // of the brick in the order over every level
   int shard = 0;
   for (std::size_t level = 0; level < placed.size(); ++level) {
-    std::vector<bool> isPlaced(std::size_t(grids[level].brickCount()), false);
-    for (const std::int64_t b : placed[level]) isPlaced[std::size_t(b)] = true;
-    for (const std::int64_t b : bricksInMortonOrder(grids[level])) {
-      if (!isPlaced[std::size_t(b)]) continue;
+    for (const std::int64_t b : inMortonOrder(grids[level], placed[level])) {
       while (rank >= shardStart(total, shard + 1, count)) ++shard;
       shares[std::size_t(shard)][level].push_back(b);
       ++rank;
