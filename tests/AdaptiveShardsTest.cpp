@@ -14,6 +14,7 @@
 #include "formats/VolumeReader.h"
 #include "tests/BakerProcess.h"
 #include "tests/TestData.h"
+#include "tests/VolumeFiles.h"
 #include "volume/AdaptiveFinish.h"
 #include "volume/Shard.h"
 #include "volume/StoredBricks.h"
@@ -25,6 +26,7 @@ namespace baker {
 namespace {
 
 namespace fs = std::filesystem;
+using test::expectSameFiles;
 using test::runBaker;
 
 // default_room at 0.15 m, three levels: 48 placed bricks, so every shard count below holds
@@ -38,29 +40,6 @@ std::vector<std::string> bakeArgs(const std::vector<std::string>& extra) {
   args.insert(args.end(), kBake.begin(), kBake.end());
   args.insert(args.end(), extra.begin(), extra.end());
   return args;
-}
-
-std::string bytesOf(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
-
-// Every file under a volume (one .vdb, or an EXR directory and its level directories) with its bytes.
-std::map<std::string, std::string> filesOf(const fs::path& volume) {
-  if (fs::is_regular_file(volume)) return {{"", bytesOf(volume)}};
-  std::map<std::string, std::string> files;
-  for (const auto& entry : fs::recursive_directory_iterator(volume))
-    if (entry.is_regular_file()) files[fs::relative(entry.path(), volume).string()] = bytesOf(entry.path());
-  return files;
-}
-
-void expectSameFiles(const fs::path& merged, const fs::path& whole) {
-  const auto a = filesOf(merged), b = filesOf(whole);
-  ASSERT_EQ(a.size(), b.size()) << merged << " against " << whole;
-  for (auto i = a.begin(), j = b.begin(); i != a.end(); ++i, ++j) {
-    EXPECT_EQ(i->first, j->first);
-    EXPECT_TRUE(i->second == j->second) << i->first << " of " << merged << " differs from " << whole;
-  }
 }
 
 std::vector<std::string> bakeParts(const std::string& dir, int count) {

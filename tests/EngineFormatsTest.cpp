@@ -17,6 +17,7 @@
 #include "formats/VolumeWriter.h"
 #include "tests/BakerProcess.h"
 #include "tests/TestData.h"
+#include "tests/VolumeFiles.h"
 
 // The engines' formats: the texel encodings against their specifications, what goes in comes
 // back out through the one reader, and damaged exports name their file. tests/engines/ reads the
@@ -276,11 +277,6 @@ TEST(EngineFormats, DamagedExportsNameTheirFile) {
   EXPECT_THROW(readVolume(noAtlas), InputError);
 }
 
-std::string bytesOf(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
 TEST(EngineFormats, TheSameVolumeIsTheSameFiles) {
   const std::string dir = test::makeTempDir("engine_same");
   const auto sh = makeBasis("sh-l2");
@@ -291,9 +287,9 @@ TEST(EngineFormats, TheSameVolumeIsTheSameFiles) {
     writeVolume(v, *sh, {dir + "/a", format});
     writeVolume(v, *sh, {dir + "/b", format});
     for (const std::string& file : files) {
-      const std::string a = bytesOf(dir + "/a/" + file);
+      const std::string a = test::bytesOf(dir + "/a/" + file);
       EXPECT_FALSE(a.empty()) << file;
-      EXPECT_EQ(a, bytesOf(dir + "/b/" + file)) << file;
+      EXPECT_EQ(a, test::bytesOf(dir + "/b/" + file)) << file;
     }
     std::filesystem::remove_all(dir + "/a");
     std::filesystem::remove_all(dir + "/b");

@@ -18,6 +18,7 @@
 #include "formats/VolumeReader.h"
 #include "tests/BakerProcess.h"
 #include "tests/TestData.h"
+#include "tests/VolumeFiles.h"
 #include "volume/ProbeRows.h"
 #include "volume/Shard.h"
 
@@ -27,6 +28,8 @@ namespace baker {
 namespace {
 
 namespace fs = std::filesystem;
+using test::bytesOf;
+using test::expectSameFiles;
 using test::runBaker;
 
 // default_room at 0.3 m: 2 × 2 × 2 bricks, probes in its walls (relocated, and invalid ones
@@ -41,28 +44,6 @@ std::vector<std::string> bakeArgs(const std::vector<std::string>& extra) {
   args.insert(args.end(), kBake.begin(), kBake.end());
   args.insert(args.end(), extra.begin(), extra.end());
   return args;
-}
-
-std::string bytesOf(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), {}};
-}
-
-// Every file of a volume (one .vdb, or an EXR directory) by name, with its bytes.
-std::map<std::string, std::string> filesOf(const fs::path& volume) {
-  std::map<std::string, std::string> files;
-  if (fs::is_regular_file(volume)) return {{volume.filename().string(), bytesOf(volume)}};
-  for (const auto& entry : fs::directory_iterator(volume)) files[entry.path().filename().string()] = bytesOf(entry.path());
-  return files;
-}
-
-void expectSameFiles(const fs::path& merged, const fs::path& whole) {
-  const auto a = filesOf(merged), b = filesOf(whole);
-  ASSERT_EQ(a.size(), b.size()) << merged << " against " << whole;
-  for (auto i = a.begin(), j = b.begin(); i != a.end(); ++i, ++j) {
-    if (fs::is_directory(merged)) EXPECT_EQ(i->first, j->first);
-    EXPECT_TRUE(i->second == j->second) << i->first << " of " << merged << " differs from " << whole;
-  }
 }
 
 // The shards' parts of `count`, baked one process each, named part-K.EXT.

@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
 
 #include "common/Error.h"
 #include "volume/StoredBricks.h"
@@ -49,19 +48,11 @@ AdaptiveVolume unpackLevels(const AdaptiveVolume& like, const Shard& shard,
     level.shard = shard;
     if (std::int64_t(share[k].size()) < grid.brickCount()) level.rows = ProbeRows(grid, share[k]);
     holdZeroProbes(level);
-    const int nc = level.coefficientsPerProbe, nv = level.visibilityPerProbe;
     for (const std::int64_t b : share[k])
       for (const std::int64_t p : probesOfBrick(grid, b)) {
-        const std::int64_t r = level.rowOf(p);
-        const float state = *in++;
-        if (!(state >= 0.0f && state < float(kProbeStateCount) && state == float(int(state))))
-          throw InputError(fmt::format("shard {}: probe {} of level {} has state {}", shardName(shard), p, k, state));
-        level.states[std::size_t(r)] = ProbeState(std::uint8_t(state));
-        for (int c = 0; c < 3; ++c) level.offsets[std::size_t(r)][c] = *in++;
-        std::copy_n(in, nc, level.coefficients.begin() + r * nc);
-        in += nc;
-        std::copy_n(in, nv, level.visibility.begin() + r * nv);
-        in += nv;
+        const float* next = unpackProbe(in, level, level.rowOf(p), kProbeStateCount);
+        if (!next) throw InputError(fmt::format("shard {}: probe {} of level {} has state {}", shardName(shard), p, k, *in));
+        in = next;
       }
   }
   return part;

@@ -142,16 +142,23 @@ void VolumeAssembly::addPacked(const Shard& shard, const std::vector<float>& pac
   const float* in = packed.data();
   for (const std::int64_t b : bricks)
     for (const std::int64_t p : probesOfBrick(whole_.grid, b)) {
-      const float state = *in++;
-      if (!(state == 0.0f || state == 1.0f || state == 2.0f))
-        throw InputError(fmt::format("shard {}: probe {} has state {}, not 0, 1 or 2", shardName(shard), p, state));
-      whole_.states[p] = ProbeState(std::uint8_t(state));
-      for (int c = 0; c < 3; ++c) whole_.offsets[p][c] = *in++;
-      std::copy_n(in, nc, whole_.coefficients.begin() + p * nc);
-      in += nc;
-      std::copy_n(in, nv, whole_.visibility.begin() + p * nv);
-      in += nv;
+      const float* next = unpackProbe(in, whole_, p, int(ProbeState::Relocated) + 1);
+      if (!next)
+        throw InputError(fmt::format("shard {}: probe {} has state {}, not 0, 1 or 2", shardName(shard), p, *in));
+      in = next;
     }
+}
+
+const float* unpackProbe(const float* in, Volume& volume, std::int64_t row, int stateLimit) {
+  const float state = in[0];
+  if (!(state >= 0.0f && state < float(stateLimit) && state == float(int(state)))) return nullptr;
+  const int nc = volume.coefficientsPerProbe, nv = volume.visibilityPerProbe;
+  const std::size_t r = std::size_t(row);
+  volume.states[r] = ProbeState(std::uint8_t(state));
+  for (int c = 0; c < 3; ++c) volume.offsets[r][c] = in[1 + c];
+  std::copy_n(in + 4, nc, volume.coefficients.begin() + row * nc);
+  std::copy_n(in + 4 + nc, nv, volume.visibility.begin() + row * nv);
+  return in + 4 + nc + nv;
 }
 
 Volume VolumeAssembly::finish() {

@@ -55,6 +55,9 @@ void requireSameBake(const Volume& part, const std::string& name, const Volume& 
 // A part's values for its shard's bricks, probe by probe in brick order: state, offset (3),
 // coefficients, sky visibility; what a rank sends to the rank that writes the volume.
 std::vector<float> packBricks(const Volume& part, const std::vector<std::int64_t>& bricks);
+// Reads one probe as packBricks packs it into row `row` of `volume` and returns where the next
+// starts; nullptr, reading nothing, when its state is not a whole number below `stateLimit`.
+const float* unpackProbe(const float* in, Volume& volume, std::int64_t row, int stateLimit);
 // The size of packBricks's result for these bricks of `grid`.
 std::size_t packedSize(const ProbeGrid& grid, const std::vector<std::int64_t>& bricks, int coefficientsPerProbe,
                        int visibilityPerProbe);
