@@ -22,6 +22,9 @@ constexpr double kMaxConditionNumber = 1e12;
 // integrand of the Gram matrix, is integrated again at this finer order to hold to that.
 constexpr int kCheckQuadratureOrder = 24;
 constexpr double kMaxQuadratureDisagreement = 1e-9;
+// Doubling the quadrature order moves no entry by more than this, relative to the largest
+// (GramOperators.h): smaller entries are quadrature rounding, not integrals.
+constexpr double kQuadratureAccuracy = 1e-12;
 // Refused, not regularised: an engine reconstructs with the basis's own functions, so
 // coefficients from a damped inverse would stand for a different function than they claim.
 constexpr const char* kRefusal = "baker refuses such a basis rather than regularising it";
@@ -35,6 +38,17 @@ Eigen::MatrixXd sampleFunctions(const SphericalFunctions& f, const DirectionSet&
     values.row(k) = row.transpose();
   }
   return values;
+}
+
+// An entry that is zero in exact arithmetic (an SH basis's moment with another SH band, say)
+// comes out of the quadrature as ±1e-17. Left in an operator, that noise reaches every probe's
+// coefficients as values no reader can tell from signal, and costs a volume its compression:
+// rounding noise does not compress, exact zeros do.
+Eigen::MatrixXd withoutRoundingNoise(Eigen::MatrixXd op) {
+  const double floor = kQuadratureAccuracy * op.cwiseAbs().maxCoeff();
+  for (Eigen::Index k = 0; k < op.size(); ++k)
+    if (std::abs(op.data()[k]) <= floor) op.data()[k] = 0.0;
+  return op;
 }
 
 Eigen::VectorXd weightsOf(const DirectionSet& q) { return Eigen::Map<const Eigen::VectorXd>(q.weights.data(), q.size()); }
@@ -241,7 +255,7 @@ Eigen::MatrixXd GramOperators::radianceToIrradiance(const BandWindow& window, in
   return convergedBandSum(
       [&](int order) {
         const Eigen::MatrixXd& b = shMoments(order);
-        return Eigen::MatrixXd(inverse_ * b * bandFactors(order, window).asDiagonal() * b.transpose());
+        return withoutRoundingNoise(inverse_ * b * bandFactors(order, window).asDiagonal() * b.transpose());
       },
       orderUsed);
 }
@@ -265,7 +279,7 @@ Eigen::MatrixXd GramOperators::irradianceFromSh(int order, const BandWindow& win
   // The bands left out are multiplied by zero: their columns stay zero.
   Eigen::MatrixXd result = Eigen::MatrixXd::Zero(functions_.count(), factors.size());
   for (int k = 0; k < kept.count(); ++k) result.col(kept.indices()[k]) = convolved.col(k);
-  return result;
+  return withoutRoundingNoise(std::move(result));
 }
 
 ShReproduction GramOperators::shReproduction(int maxOrder) const {

@@ -92,6 +92,11 @@ TEST(BakeJob, TheVolumeRecordsWhatMadeItAndProbesAtMatchTheGrid) {
   EXPECT_EQ(volume.settings.at("sampler"), ProbeBaker::kSampler);
   EXPECT_EQ(volume.settings.at("effect.bounces"), "on");
   EXPECT_EQ(job.rayLimit(), 16);
+  // 16 rays fit sky visibility to SH band 1 only: its band-2 coefficients are zero in exact
+  // arithmetic and must be stored as zeros, not as the quadrature's ±1e-17.
+  ASSERT_EQ(volume.visibilityPerProbe, 9);
+  for (std::size_t row = 0; row * 9 < volume.visibility.size(); ++row)
+    for (int f = 4; f < 9; ++f) ASSERT_EQ(volume.visibility[row * 9 + f], 0.0f) << "row " << row << ", coefficient " << f;
 
   // A probe placed where the grid puts one is placed the same way.
   const Eigen::Vector3f at = volume.grid.position(1, 1, 1).cast<float>();

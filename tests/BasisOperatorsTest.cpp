@@ -82,6 +82,21 @@ TEST(BasisOperators, IrradianceFromShLeavesOutOnlyTheBandsItZeroes) {
   }
 }
 
+// An SH basis's operators from SH are diagonal in exact arithmetic; the quadrature leaves
+// ±1e-17 off the diagonal, which would reach every probe as coefficients of rounding noise
+// (sky visibility's band 2 at 16 rays, fitted to band 1 only). They must be exact zeros.
+TEST(BasisOperators, ShBasisOperatorsHoldExactZerosOffTheDiagonal) {
+  const auto basis = makeBasis("sh-l2");
+  const GramOperators ops(basis->functions(0), "sh-l2");
+  for (const Eigen::MatrixXd& op : {ops.irradianceFromSh(1), ops.irradianceFromSh(4), ops.radianceToIrradiance()}) {
+    for (Eigen::Index i = 0; i < op.rows(); ++i)
+      for (Eigen::Index j = 0; j < op.cols(); ++j)
+        if (i != j) EXPECT_EQ(op(i, j), 0.0) << "entry (" << i << ", " << j << ") of a " << op.rows() << " × " << op.cols();
+    const int l = 1;
+    EXPECT_NEAR(op(l * l, l * l), clampedCosineBand(l), 1e-12);
+  }
+}
+
 // Inner products are summed in chunks fixed by the quadrature, not by the threads, and each
 // block multiplies only the functions non-zero on it: the same bits on one thread and on
 // three, and the plain sum over every node, for f against SH and for f against itself (Gram).
