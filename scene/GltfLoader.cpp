@@ -61,7 +61,10 @@ class SceneBuilder {
     GltfMaterials materials = readMaterials(model_, images_, file_, scene_.warnings);
     GltfMeshReader reader(model_, file_, materials);
     selectScene();
-    if (scene_.sceneIndex >= 0) visitScene();
+    if (scene_.sceneIndex >= 0) {
+      visitScene();
+      readProbeHints();
+    }
     for (int node : meshNodes_) instantiate(node, reader);
     for (const std::string& w : reader.warnings()) scene_.warnings.push_back(w);
     reportAssumptions();
@@ -131,6 +134,32 @@ class SceneBuilder {
       scene_.sceneIndex = model_.defaultScene >= 0 ? model_.defaultScene : 0;
       if (scene_.sceneIndex >= count)
         fail(fmt::format("scene {} does not exist ({} scenes)", scene_.sceneIndex, count));
+    }
+  }
+
+  void readProbeHints() {
+    const tinygltf::Value& extras = model_.scenes[scene_.sceneIndex].extras;
+    if (!extras.IsObject() || !extras.Has("probe_hint")) return;
+    const tinygltf::Value& hints = extras.Get("probe_hint");
+    const std::string where = fmt::format("scenes[{}].extras.probe_hint", scene_.sceneIndex);
+    // extras are the author's own data: a hint this reader cannot use is skipped, never a reason
+    // to refuse a scene every other command loads.
+    if (!hints.IsArray()) {
+      scene_.warnings.push_back(where + " is not an array of [x, y, z] positions: ignored");
+      return;
+    }
+    for (std::size_t h = 0; h < hints.ArrayLen(); ++h) {
+      const tinygltf::Value& hint = hints.Get(int(h));
+      Eigen::Vector3f position;
+      bool valid = hint.IsArray() && hint.ArrayLen() == 3;
+      for (int a = 0; valid && a < 3; ++a) {
+        valid = hint.Get(a).IsNumber();
+        if (valid) position[a] = float(hint.Get(a).GetNumberAsDouble());
+      }
+      if (valid && position.allFinite())
+        scene_.probeHints.push_back(position);
+      else
+        scene_.warnings.push_back(fmt::format("{}[{}] is not a finite [x, y, z] position: ignored", where, h));
     }
   }
 

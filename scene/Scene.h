@@ -42,6 +42,9 @@ struct Scene {
   std::vector<std::string> extensionsUsed;     // the file's extensionsUsed
   std::vector<std::string> extensionsIgnored;  // those of them this baker does not apply
   std::vector<std::string> warnings;           // things skipped or assumed while loading
+  // World positions the file suggests for probes (scenes[i].extras.probe_hint: [[x, y, z], …]),
+  // where its author knows something about the light; empty when it suggests none.
+  std::vector<Eigen::Vector3f> probeHints;
 
   // Triangles in world space, counting each instance of a mesh.
   std::uint64_t triangleCount() const;
