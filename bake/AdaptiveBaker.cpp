@@ -19,6 +19,7 @@ AdaptiveVolume bakeAdaptive(const Scene& scene, const RayTracer& tracer, const B
                             const std::optional<Shard>& shard) {
   const std::vector<std::vector<std::int64_t>> share =
       shard ? shardLevelBricks(placement.grids, placement.bricks, *shard) : placement.bricks;
+  // Rows are held for whole bricks (ProbeRows), sub-bricks placed or not.
   std::int64_t brickCount = 0, probes = 0;
   for (std::size_t level = 0; level < share.size(); ++level) {
     brickCount += std::int64_t(share[level].size());
@@ -45,26 +46,28 @@ AdaptiveVolume bakeAdaptive(const Scene& scene, const RayTracer& tracer, const B
   for (int index = 0; index < placement.levels(); ++index) {
     const ProbeGrid& grid = placement.grids[std::size_t(index)];
     const std::vector<std::int64_t>& bricks = share[std::size_t(index)];
-    const bool everyBrick = std::int64_t(bricks.size()) == grid.brickCount();
-    volume.levels.push_back(baker.emptyVolume(grid, everyBrick ? ProbeRows() : ProbeRows(grid, bricks)));
+    ProbeRows rows = placement.rows(index, bricks);
+    const bool everyProbe = std::int64_t(bricks.size()) == grid.brickCount() && !rows.holdsPartialBricks();
+    volume.levels.push_back(baker.emptyVolume(grid, everyProbe ? ProbeRows() : std::move(rows)));
     Volume& level = volume.levels.back();
     level.shard = shard;
-    if (index > 0) markLevelBorder(level, placedBricks(grid, placement.bricks[std::size_t(index)]));
+    if (index > 0) markLevelBorder(level, shard ? placement.rows(index) : level.rows);
     baker.bake(level, bricks, firstIds[std::size_t(index)], stats, [&] {
       const std::int64_t done = ++bricksDone;
       if (progress) progress(done, brickCount);
     });
   }
+  // The states as traced, before the finish drops bricks not worth storing.
+  std::vector<const Volume*> levels;
+  for (const Volume& level : volume.levels) levels.push_back(&level);
+  baker.finishStats(levels, stats);
   if (shard) {
-    volume.placement = summarizePlacement(placement.bricks);
+    volume.placement = summarizePlacement(placement.bricks, placement.masks);
   } else {
     finishAdaptiveLevels(volume);
   }
   // A part's too: a rank sends its values unchecked, and the merge's fill would spread a NaN.
   for (const Volume& level : volume.levels) requireFiniteBake(level);
-  std::vector<const Volume*> levels;
-  for (const Volume& level : volume.levels) levels.push_back(&level);
-  baker.finishStats(levels, stats);
   if (stats) stats->traceSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return volume;
 }

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cmath>
 #include <memory>
+#include <stdexcept>
 
 #include "bake/ProbeValidity.h"
 #include "bake/TriangleBoxOverlap.h"
@@ -15,44 +16,48 @@
 namespace baker {
 namespace {
 
-// One flag per brick of a level, set from any thread.
+// Per brick of a level, the sub-bricks some triangle lies near, set from any thread.
 class BrickMarks {
  public:
-  explicit BrickMarks(std::int64_t bricks) : flags_(new std::atomic<std::uint8_t>[std::size_t(bricks)]()) {}
-  void set(std::int64_t brick) { flags_[std::size_t(brick)].store(1, std::memory_order_relaxed); }
-  bool operator[](std::int64_t brick) const { return flags_[std::size_t(brick)].load(std::memory_order_relaxed) != 0; }
+  explicit BrickMarks(std::int64_t bricks) : masks_(new std::atomic<std::uint8_t>[std::size_t(bricks)]()) {}
+  void set(std::int64_t brick, std::uint8_t bit) { masks_[std::size_t(brick)].fetch_or(bit, std::memory_order_relaxed); }
+  std::uint8_t operator[](std::int64_t brick) const { return masks_[std::size_t(brick)].load(std::memory_order_relaxed); }
 
  private:
-  std::unique_ptr<std::atomic<std::uint8_t>[]> flags_;
+  std::unique_ptr<std::atomic<std::uint8_t>[]> masks_;
 };
 
-// The box a brick's probes span, grown by `margin` cells on every side.
-Eigen::AlignedBox3d brickBox(const ProbeGrid& grid, std::int64_t brick, int margin) {
-  const Eigen::Vector3d lo = grid.brickCorner(brick).cast<double>().array() - margin;
-  const Eigen::Vector3d hi = (grid.brickCorner(brick) + grid.brickExtent(brick)).cast<double>().array() - 1 + margin;
+// The box the probes of sub-brick `s` (whole sub-brick coordinates) span, grown by `margin`
+// cells on every side.
+Eigen::AlignedBox3d subBrickBox(const ProbeGrid& grid, const Eigen::Vector3i& s, int margin) {
+  const Eigen::Vector3i first = kSubBrickSize * s;
+  const Eigen::Vector3i last = (first.array() + kSubBrickSize - 1).min(grid.dims.array() - 1);
+  const Eigen::Vector3d lo = first.cast<double>().array() - margin, hi = last.cast<double>().array() + margin;
   return {grid.origin + grid.spacing * lo, grid.origin + grid.spacing * hi};
 }
 
-// Marks every brick of `grid` whose grown box the triangle overlaps.
+// Marks every sub-brick of `grid` whose grown box the triangle overlaps.
 void markTriangle(const ProbeGrid& grid, int margin, const Eigen::Vector3d (&corners)[3], BrickMarks& marks) {
-  const Eigen::Vector3i counts = grid.brickCounts();
+  const Eigen::Vector3i counts = (grid.dims.array() + kSubBrickSize - 1) / kSubBrickSize;
   Eigen::Vector3i first, last;
   for (int a = 0; a < 3; ++a) {
     const double lo = std::min({corners[0][a], corners[1][a], corners[2][a]});
     const double hi = std::max({corners[0][a], corners[1][a], corners[2][a]});
-    // Brick b spans probes [8b - margin, 8b + 7 + margin] along the axis.
-    const double from = std::floor(((lo - grid.origin[a]) / grid.spacing - (kBrickSize - 1) - margin) / kBrickSize);
-    const double to = std::floor(((hi - grid.origin[a]) / grid.spacing + margin) / kBrickSize);
+    // Sub-brick s spans probes [4s - margin, 4s + 3 + margin] along the axis.
+    const double from = std::floor(((lo - grid.origin[a]) / grid.spacing - (kSubBrickSize - 1) - margin) / kSubBrickSize);
+    const double to = std::floor(((hi - grid.origin[a]) / grid.spacing + margin) / kSubBrickSize);
     if (!(to >= 0.0 && from <= counts[a] - 1.0)) return;  // also a NaN corner
     first[a] = int(std::max(from, 0.0));
     last[a] = int(std::min(to, counts[a] - 1.0));
   }
-  for (int bz = first.z(); bz <= last.z(); ++bz)
-    for (int by = first.y(); by <= last.y(); ++by)
-      for (int bx = first.x(); bx <= last.x(); ++bx) {
-        const std::int64_t brick = bx + std::int64_t(counts.x()) * (by + std::int64_t(counts.y()) * bz);
-        if (!marks[brick] && triangleOverlapsBox(corners[0], corners[1], corners[2], brickBox(grid, brick, margin)))
-          marks.set(brick);
+  for (int sz = first.z(); sz <= last.z(); ++sz)
+    for (int sy = first.y(); sy <= last.y(); ++sy)
+      for (int sx = first.x(); sx <= last.x(); ++sx) {
+        const Eigen::Vector3i s(sx, sy, sz), probe = kSubBrickSize * s;
+        const std::int64_t brick = grid.brickOf(probe.x(), probe.y(), probe.z());
+        const std::uint8_t bit = subBrickBit(probe.x(), probe.y(), probe.z());
+        if (!(marks[brick] & bit) && triangleOverlapsBox(corners[0], corners[1], corners[2], subBrickBox(grid, s, margin)))
+          marks.set(brick, bit);
       }
 }
 
@@ -90,9 +95,34 @@ bool deepInside(const RayTracer& tracer, const ProbeGrid& grid, std::int64_t bri
 }  // namespace
 
 std::int64_t AdaptivePlacement::probes(int level) const {
+  const ProbeRows held = rows(level);
   std::int64_t n = 0;
-  for (const std::int64_t b : bricks[std::size_t(level)]) n += grids[std::size_t(level)].brickExtent(b).cast<std::int64_t>().prod();
+  for (const std::int64_t b : bricks[std::size_t(level)]) n += held.probesHeld(grids[std::size_t(level)], b);
   return n;
+}
+
+std::int64_t AdaptivePlacement::slots() const {
+  std::int64_t n = 0;
+  for (int level = 0; level < levels(); ++level)
+    for (const std::int64_t b : bricks[std::size_t(level)])
+      n += grids[std::size_t(level)].brickExtent(b).cast<std::int64_t>().prod();
+  return n;
+}
+
+ProbeRows AdaptivePlacement::rows(int level) const {
+  return ProbeRows(grids[std::size_t(level)], bricks[std::size_t(level)], masks[std::size_t(level)]);
+}
+
+ProbeRows AdaptivePlacement::rows(int level, const std::vector<std::int64_t>& share) const {
+  const std::vector<std::int64_t>& placed = bricks[std::size_t(level)];
+  std::vector<std::uint8_t> shareMasks;
+  shareMasks.reserve(share.size());
+  for (const std::int64_t b : share) {
+    const auto at = std::lower_bound(placed.begin(), placed.end(), b);
+    if (at == placed.end() || *at != b) throw std::logic_error("AdaptivePlacement: a share's brick is not placed");
+    shareMasks.push_back(masks[std::size_t(level)][std::size_t(at - placed.begin())]);
+  }
+  return ProbeRows(grids[std::size_t(level)], share, shareMasks);
 }
 
 std::int64_t AdaptivePlacement::probes() const {
@@ -111,26 +141,37 @@ AdaptivePlacement placeAdaptive(const Scene& scene, const RayTracer& tracer, con
     throw SettingError("spacing", fmt::format("{:.4g} m gives {} bricks at the finest level, beyond the {:.3g} an adaptive bake "
                                               "indexes (raise the spacing)",
                                               finest.spacing, finest.brickCount(), kMaxLevelBricks));
-  const std::vector<std::unique_ptr<BrickMarks>> marks = markGeometry(scene, placement.grids, marginCells);
+  // One cell more than the margin: the neighbours of a probe within the margin are placed too.
+  const std::vector<std::unique_ptr<BrickMarks>> marks = markGeometry(scene, placement.grids, marginCells + 1);
 
   const std::int64_t coarseBricks = coarsest.brickCount();
   std::vector<std::uint8_t> dropped(std::size_t(coarseBricks), 0);
   const std::vector<Eigen::Vector3f> directions = validityDirections(ValidityOptions{});
   tbb::parallel_for(std::int64_t(0), coarseBricks, [&](std::int64_t b) {
-    dropped[std::size_t(b)] = !(*marks[0])[b] && deepInside(tracer, coarsest, b, directions);
+    dropped[std::size_t(b)] = (*marks[0])[b] == 0 && deepInside(tracer, coarsest, b, directions);
   });
   placement.bricks.resize(std::size_t(levels));
+  placement.masks.resize(std::size_t(levels));
   for (std::int64_t b = 0; b < coarseBricks; ++b) {
-    if (dropped[std::size_t(b)]) ++placement.deepInsideBricks;
-    else placement.bricks[0].push_back(b);
+    if (dropped[std::size_t(b)]) {
+      ++placement.deepInsideBricks;
+    } else {
+      placement.bricks[0].push_back(b);
+      placement.masks[0].push_back(subBricksInGrid(coarsest, b));
+    }
   }
-  for (int level = 1; level < levels; ++level)
-    for (std::int64_t b = 0; b < placement.grids[std::size_t(level)].brickCount(); ++b)
-      if ((*marks[std::size_t(level)])[b]) placement.bricks[std::size_t(level)].push_back(b);
-  if (placement.probes() > maxProbes)
-    throw SettingError("spacing", fmt::format("{:.4g} m over {} levels places {} probes; the limit is {} (raise the spacing "
-                                              "or lower the levels)",
-                                              finest.spacing, levels, placement.probes(), maxProbes));
+  for (std::size_t level = 1; level < std::size_t(levels); ++level) {
+    const ProbeGrid& grid = placement.grids[level];
+    for (std::int64_t b = 0; b < grid.brickCount(); ++b)
+      if (const std::uint8_t mask = std::uint8_t((*marks[level])[b] & subBricksInGrid(grid, b))) {
+        placement.bricks[level].push_back(b);
+        placement.masks[level].push_back(mask);
+      }
+  }
+  if (placement.slots() > maxProbes)
+    throw SettingError("spacing", fmt::format("{:.4g} m over {} levels places {} probes in bricks of {} slots; the limit is "
+                                              "{} (raise the spacing or lower the levels)",
+                                              finest.spacing, levels, placement.probes(), placement.slots(), maxProbes));
   return placement;
 }
 

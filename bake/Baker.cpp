@@ -29,20 +29,15 @@ void bakeBrick(const RayTracer& tracer, const BakeSettings& settings, const Prob
                Volume& volume, RayCounts& counts, RoundTally& tally, std::vector<float>& coefficients,
                std::vector<float>& visibility) {
   const ProbeGrid& grid = volume.grid;
-  const Eigen::Vector3i lo = grid.brickCorner(brick);
-  const Eigen::Vector3i hi = lo + grid.brickExtent(brick);
   std::vector<ProbeTask> candidates;
   std::vector<std::int64_t> rows;  // each candidate's row in the volume's arrays
-  for (int k = lo.z(); k < hi.z(); ++k)
-    for (int j = lo.y(); j < hi.y(); ++j)
-      for (int i = lo.x(); i < hi.x(); ++i) {
-        const std::int64_t row = volume.rows.row(grid, i, j, k);
-        if (volume.states[row] == ProbeState::Interpolated) continue;
-        volume.states[row] = ProbeState::Valid;
-        rows.push_back(row);
-        candidates.push_back({grid.position(i, j, k).cast<float>(), firstId + std::uint64_t(grid.linearIndex(i, j, k)),
-                              rotationOf(i, j, k)});
-      }
+  forEachHeldProbeOfBrick(grid, volume.rows, brick, [&](int i, int j, int k, std::int64_t row) {
+    if (volume.states[row] == ProbeState::Interpolated) return;
+    volume.states[row] = ProbeState::Valid;
+    rows.push_back(row);
+    candidates.push_back({grid.position(i, j, k).cast<float>(), firstId + std::uint64_t(grid.linearIndex(i, j, k)),
+                          rotationOf(i, j, k)});
+  });
   if (settings.transport.probeValidity) {
     const ValidityOptions validityOptions;
     // Placed side by side like the probes' tracing (ProbeBaker::bake). Isolated so that a
@@ -144,7 +139,7 @@ void BrickBaker::bake(Volume& volume, const std::vector<std::int64_t>& bricks, s
     }
   });
   if (!stats) return;
-  for (const std::int64_t b : bricks) stats->probes += volume.grid.brickExtent(b).cast<std::int64_t>().prod();
+  for (const std::int64_t b : bricks) stats->probes += volume.rows.probesHeld(volume.grid, b);
   stats->bricks += brickCount;
   for (const RayCounts& c : brickRays) stats->rays += c;  // in brick order: the same sums every run
   for (const RoundTally& t : brickTallies) stats->lattice += t;

@@ -29,7 +29,7 @@ std::uintmax_t bytesOf(const std::string& path) {
 // Probes of every level: a uniform volume's grid, or what the levels hold.
 std::int64_t probesHeld(const AdaptiveVolume& volume) {
   std::int64_t probes = 0;
-  for (const Volume& level : volume.levels) probes += level.rows.count(level.grid);
+  for (const Volume& level : volume.levels) probes += level.rows.probesHeld(level.grid);
   return probes;
 }
 
@@ -49,7 +49,8 @@ nlohmann::json levelsJson(const AdaptiveVolume& volume, std::int64_t (&counts)[k
   nlohmann::json levels = nlohmann::json::array();
   for (std::size_t k = 0; k < volume.levels.size(); ++k) {
     const Volume& level = volume.levels[k];
-    for (ProbeState s : level.states) ++counts[int(s)];
+    for (std::size_t row = 0; row < level.states.size(); ++row)
+      if (level.rows.holdsRow(level.grid, std::int64_t(row))) ++counts[int(level.states[row])];
     if (level.states.empty()) counts[int(ProbeState::Valid)] += level.grid.probeCount();
     const ProbeGrid& g = level.grid;
     levels.push_back({{"level", k},
@@ -57,7 +58,7 @@ nlohmann::json levelsJson(const AdaptiveVolume& volume, std::int64_t (&counts)[k
                       {"origin", {g.origin.x(), g.origin.y(), g.origin.z()}},
                       {"spacing", g.spacing},
                       {"bricks", level.rows.holdsEveryProbe() ? g.brickCount() : std::int64_t(level.rows.bricks().size())},
-                      {"probes", level.rows.count(g)}});
+                      {"probes", level.rows.probesHeld(g)}});
   }
   return levels;
 }
@@ -131,12 +132,15 @@ int runInspectCommand(int argc, char** argv) {
     for (const VolumeGrid& grid : volumeGrids(*basis, v.visibilityPerProbe, !v.states.empty())) {
       float lo = std::numeric_limits<float>::infinity(), hi = -lo;
       for (const Volume& level : volume.levels)
-        for (std::int64_t row = 0; row < level.rows.count(level.grid); ++row)
+        for (std::int64_t row = 0; row < level.rows.count(level.grid); ++row) {
+          if (!level.rows.holdsRow(level.grid, row)) continue;
+          const std::int64_t probe = level.rows.probeAt(level.grid, row);
           for (int c = 0; c < grid.components; ++c) {
-            const float value = gridValue(level, grid, c, level.rows.probeAt(level.grid, row));
+            const float value = gridValue(level, grid, c, probe);
             lo = std::min(lo, value);
             hi = std::max(hi, value);
           }
+        }
       grids.push_back({{"name", grid.name}, {"components", grid.components}, {"min", lo}, {"max", hi}});
     }
     std::int64_t counts[kProbeStateCount] = {};
@@ -174,7 +178,7 @@ int runInspectCommand(int argc, char** argv) {
                                "and invalid probes are filled when the parts are merged (baker merge)\n",
                                shardName(*v.shard), partBricks(volume, levels).first, partBricks(volume, levels).second);
     if (volume.levels.size() > 1) {
-      std::cout << fmt::format("adaptive: {} levels, spacing ×{} per level, refined within {} cell(s) of geometry\n",
+      std::cout << fmt::format("adaptive: {} levels, spacing ×{} per level, probes traced within {} cell(s) of geometry\n",
                                volume.levels.size(), kLevelRatio, volume.marginCells);
       for (const nlohmann::json& level : levels)
         std::cout << fmt::format("  level {}: spacing {:.6g}, {} bricks, {} probes\n", level["level"].get<int>(),

@@ -451,25 +451,32 @@ inline void blendProbes(const float* const probes[8], const double weight[8], in
 // ---------------------------------------------------------------------------------------------
 // Adaptive volumes ("baker.levels" > 1, docs/ADAPTIVE.md): levels of probes, coarsest first, each
 // a grid as above holding only some bricks of 8³ probes (brick (bx, by, bz) holds probes
-// 8·bx … 8·bx + 7 along x, and so on). A point is decoded from the finest level whose probes
-// around it (those with a non-zero weight) are all held; the level's border probes hold the
-// coarser levels' values there, so the result is continuous where the level changes.
+// 8·bx … 8·bx + 7 along x, and so on), and of each brick only some of its eight sub-bricks of 4³
+// (sub-brick s = sx + 2·sy + 4·sz holds the probes with (i / 4) % 2 = sx, and so on). A point is
+// decoded from the finest level whose probes around it (those with a non-zero weight) are all
+// held; the level's border probes hold the coarser levels' values there, so the result is
+// continuous where the level changes.
 
 struct Level {
   Vec3 origin;
   double spacing;
   int dims[3];
-  // Per brick, index bx + Bx·(by + By·bz) with B = ⌈dims / 8⌉: non-zero when the level holds it.
-  // Null: every brick (a uniform volume, or a level that holds them all).
-  const unsigned char* bricksHeld;
+  // Per brick, index bx + Bx·(by + By·bz) with B = ⌈dims / 8⌉: the sub-bricks the level holds of
+  // it, bit s for sub-brick s (0xFF: the whole brick; 0: none; bits of sub-bricks beyond the
+  // grid's edge are ignored). From a .vdb, the active voxels of the level's probe_state leaf; from
+  // EXR slices, the atlas' "masks" (0xFF for each brick listed when there are none). Null: every
+  // probe (a uniform volume, or a level that holds them all). Named bricksHeld, and non-zero per
+  // held brick, before format 5: renamed so that such code no longer compiles.
+  const unsigned char* subBricksHeld;
 };
 
 inline bool levelHoldsProbe(const Level& level, long long probe) {
-  if (!level.bricksHeld) return true;
+  if (!level.subBricksHeld) return true;
   const long long nx = level.dims[0], ny = level.dims[1];
   const long long i = probe % nx, j = (probe / nx) % ny, k = probe / (nx * ny);
   const long long bx = (nx + 7) / 8, by = (ny + 7) / 8;
-  return level.bricksHeld[i / 8 + bx * (j / 8 + by * (k / 8))] != 0;
+  const int subBrick = int((i / 4) % 2 + 2 * ((j / 4) % 2) + 4 * ((k / 4) % 2));
+  return (level.subBricksHeld[i / 8 + bx * (j / 8 + by * (k / 8))] >> subBrick & 1) != 0;
 }
 
 struct LevelNeighbourhood {

@@ -308,17 +308,20 @@ export function blendProbes( values, neighbourhood, count ) {
 }
 
 // Adaptive volumes (docs/ADAPTIVE.md): levels, coarsest first, each { origin, spacing, dims,
-// bricksHeld } where bricksHeld[bx + Bx·(by + By·bz)] (B = ⌈dims / 8⌉) is non-zero when the level
-// holds brick (bx, by, bz) of 8³ probes, or null when it holds them all. The header's
+// subBricksHeld } where subBricksHeld[bx + Bx·(by + By·bz)] (B = ⌈dims / 8⌉) holds the sub-bricks of 4³
+// the level holds of brick (bx, by, bz) of 8³ probes, bit s = sx + 2·sy + 4·sz for the probes with
+// (i / 4) % 2 = sx and so on (0xFF the whole brick, 0 none), or is null when it holds every probe. The header's
 // finestLevelNeighbourhood: the finest level whose probes of non-zero weight around `position` are
 // all held; when none is (deep inside closed geometry), level 0 with its held probes' weights
 // renormalised, or all zero when it holds none. Returns { level, probe, weight }.
 function levelHoldsProbe( level, probe ) {
-	if ( ! level.bricksHeld ) return true;
+	if ( level.bricksHeld !== undefined ) throw new Error( 'bricksHeld (non-zero per held brick, format 4) is now subBricksHeld: a mask of sub-bricks per brick (format 5)' );
+	if ( ! level.subBricksHeld ) return true;
 	const [ nx, ny ] = level.dims;
 	const i = probe % nx, j = Math.floor( probe / nx ) % ny, k = Math.floor( probe / ( nx * ny ) );
 	const bx = Math.ceil( nx / 8 ), by = Math.ceil( ny / 8 );
-	return level.bricksHeld[ Math.floor( i / 8 ) + bx * ( Math.floor( j / 8 ) + by * Math.floor( k / 8 ) ) ] !== 0;
+	const subBrick = Math.floor( i / 4 ) % 2 + 2 * ( Math.floor( j / 4 ) % 2 ) + 4 * ( Math.floor( k / 4 ) % 2 );
+	return ( ( level.subBricksHeld[ Math.floor( i / 8 ) + bx * ( Math.floor( j / 8 ) + by * Math.floor( k / 8 ) ) ] >> subBrick ) & 1 ) !== 0;
 }
 
 export function finestLevelNeighbourhood( position, levels ) {

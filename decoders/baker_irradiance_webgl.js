@@ -257,12 +257,14 @@ float bakerVisibility( int probe, vec3 n ) { return bakerExpandPrimary( probe, b
 `;
 
 // The textures of an adaptive volume, from its levels (coarsest first), each { origin, spacing,
-// dims, bricks, coefficients, visibility }: `bricks` the held bricks' indices bx + Bx·(by + By·bz)
-// in increasing order (the EXR atlas's "bricks"), `coefficients` and `visibility` (or null) per
+// dims, bricks, masks, coefficients, visibility }: `bricks` the held bricks' indices bx + Bx·(by + By·bz)
+// in increasing order (the EXR atlas's "bricks"), `masks` the sub-bricks held of each (the atlas's
+// "masks"; absent or null when every brick is whole), `coefficients` and `visibility` (or null) per
 // brick in that order, per probe i + 8·(j + 8·k) of the brick (the atlas slot's probes).
 // - probes: probeTexture of the pool, the levels' bricks one after the other, 512 probes each;
 // - indirection: { data: Uint32Array, width, height, depth }, texel (bx, by, brickZ + bz) = 1 +
-//   the pool slot of the level's brick, 0 where it holds none; levels stacked along z;
+//   the pool slot of the level's brick + its sub-brick mask · 2^24, 0 where it holds none; levels
+//   stacked along z;
 // - uniforms: the levels' grids for the GLSL, { name: { type, value } }.
 // maxTextureSize: gl.getParameter( gl.MAX_TEXTURE_SIZE ), to refuse a pool taller than the GPU takes.
 export function adaptiveTextures( levels, decoder, maxTextureSize = Infinity ) {
@@ -272,6 +274,7 @@ export function adaptiveTextures( levels, decoder, maxTextureSize = Infinity ) {
 	const depth = brickCounts.reduce( ( sum, b ) => sum + b[ 2 ], 0 );
 	const indirection = new Uint32Array( width * height * depth );
 	const slots = levels.reduce( ( sum, l ) => sum + l.bricks.length, 0 );
+	if ( slots > 0xFFFFFF ) throw new Error( `${ slots } bricks: the indirection texture's 24 bits of slot hold at most ${ 0xFFFFFF }` );
 	const perProbe = decoder.coefficientsPerProbe, visibilityCount = decoder.coefficientCount( 0 );
 	const hasVisibility = levels.every( ( l ) => l.visibility );
 	const coefficients = new Float32Array( slots * BRICK_PROBES * perProbe );
@@ -288,7 +291,9 @@ export function adaptiveTextures( levels, decoder, maxTextureSize = Infinity ) {
 		level.bricks.forEach( ( b, s ) => {
 			if ( ! ( b >= 0 && b < bx * by * bz ) || ( s > 0 && b <= level.bricks[ s - 1 ] ) ) throw new Error( `level ${ l }: brick ${ b } out of range or order` );
 			const x = b % bx, y = Math.floor( b / bx ) % by, k = Math.floor( b / ( bx * by ) );
-			indirection[ x + width * ( y + height * ( z + k ) ) ] = slot + s + 1;
+			const mask = level.masks ? level.masks[ s ] : 0xFF;
+			if ( ! ( mask >= 1 && mask <= 0xFF ) ) throw new Error( `level ${ l }: brick ${ b } has sub-brick mask ${ mask }` );
+			indirection[ x + width * ( y + height * ( z + k ) ) ] = ( ( mask << 24 ) >>> 0 ) + slot + s + 1;
 		} );
 		origin.set( level.origin, 3 * l );
 		spacing[ l ] = level.spacing;

@@ -15,10 +15,13 @@ namespace baker {
 struct BrickAtlas {
   Eigen::Vector3i slots = Eigen::Vector3i::Zero();  // along x, y, z
   std::vector<std::int64_t> bricks;                 // linear brick indices of the grid, increasing
+  // Per brick, its sub-bricks held (volume/SubBricks.h); empty when every brick is whole. The
+  // texels of the others hold no probe.
+  std::vector<std::uint8_t> masks;
 
   // The bricks in a near-cubic atlas: ⌈∛n⌉ slots along x and y, as many layers along z as needed,
   // so that every side stays within a GPU's 3D texture limit (2048 texels) up to 2^24 bricks.
-  static BrickAtlas of(std::vector<std::int64_t> bricks);
+  static BrickAtlas of(std::vector<std::int64_t> bricks, std::vector<std::uint8_t> masks = {});
   Eigen::Vector3i texels() const { return slots * kBrickSize; }
   // The probe of `grid` at texel (x, y, z), or -1 when the texel holds none.
   std::int64_t probeAt(const ProbeGrid& grid, int x, int y, int z) const;

@@ -32,9 +32,10 @@ LevelsManifest levelsManifest(const nlohmann::json& m, const std::string& manife
   try {
     if (m.at("format") != kExrFormatName)
       throw InputError(fmt::format("{}: \"format\" is {}, expected \"{}\"", manifestPath, m.at("format").dump(), kExrFormatName));
-    if (m.at("format_version").get<int>() != kLevelsFormatVersion)
-      throw InputError(fmt::format("{}: \"format_version\" is {}; levels in EXR slices are format {}", manifestPath,
-                                   m.at("format_version").dump(), kLevelsFormatVersion));
+    const int version = m.at("format_version").get<int>();
+    if (version < kFirstLevelsFormatVersion || version > kLevelsFormatVersion)
+      throw InputError(fmt::format("{}: \"format_version\" is {}; levels in EXR slices are formats {} to {}", manifestPath,
+                                   m.at("format_version").dump(), kFirstLevelsFormatVersion, kLevelsFormatVersion));
     levels.directories = m.at(kLevelsManifestKey).get<std::vector<std::string>>();
     levels.marginCells = m.at(kMarginKey).get<int>();
     levels.basis = m.at("basis").get<std::string>();
@@ -111,7 +112,12 @@ void writeAdaptiveExrSlices(const AdaptiveVolume& volume, const Basis& basis, co
     std::error_code ec;
     if (!std::filesystem::create_directory(dir, ec))
       throw InputError(fmt::format("{}: cannot create {}: {}", directory, name, ec.message()));
-    const BrickAtlas atlas = BrickAtlas::of(heldBricksInOrder(volume.levels[k]));
+    const Volume& level = volume.levels[k];
+    std::vector<std::int64_t> bricks = heldBricksInOrder(level);
+    std::vector<std::uint8_t> masks;
+    if (level.rows.holdsPartialBricks())
+      for (const std::int64_t b : bricks) masks.push_back(level.rows.subBricks(level.grid, b));
+    const BrickAtlas atlas = BrickAtlas::of(std::move(bricks), std::move(masks));
     const std::string version = std::to_string(kLevelsFormatVersion);
     writeSliceSet(volume.levels[k], basis, dir.string(), precision, &atlas,
                   {{"format_version", kLevelsFormatVersion}, {"level", k}, {"metadata", {{"baker.format_version", version}}}});

@@ -13,6 +13,7 @@
 #include "common/Error.h"
 #include "formats/AtomicFile.h"
 #include "formats/BrickAtlas.h"
+#include "volume/SubBricks.h"
 #include "formats/HalfFloat.h"
 #include "formats/VolumeHeader.h"
 #include "formats/VolumeLayout.h"
@@ -132,7 +133,10 @@ void writeSliceSet(const Volume& volume, const Basis& basis, const std::string& 
       slice.channelStorage.push_back(alwaysFloat(g) ? PixelType::Float : storage);
     }
   nlohmann::json manifest = manifestOf(volume, basis, precision, scale, slice.channelNames, layout);
-  if (atlas) manifest["atlas"] = {{"slots", {atlas->slots.x(), atlas->slots.y(), atlas->slots.z()}}, {"bricks", atlas->bricks}};
+  if (atlas) {
+    manifest["atlas"] = {{"slots", {atlas->slots.x(), atlas->slots.y(), atlas->slots.z()}}, {"bricks", atlas->bricks}};
+    if (!atlas->masks.empty()) manifest["atlas"]["masks"] = atlas->masks;
+  }
   manifest.merge_patch(extra);
   for (const auto& [key, value] : manifest["metadata"].items())
     slice.textAttributes.push_back({key, value.get<std::string>()});
@@ -195,7 +199,19 @@ BrickAtlas readAtlas(const nlohmann::json& a, const std::string& manifestPath) {
   for (std::size_t n = 1; n < bricks.size(); ++n)
     if (bricks[n] <= bricks[n - 1])
       throw InputError(fmt::format("{}: \"atlas\".\"bricks\" must be in increasing order", manifestPath));
-  BrickAtlas atlas = BrickAtlas::of(bricks);
+  std::vector<std::uint8_t> masks;
+  if (a.contains("masks")) {
+    const auto read = a.at("masks").get<std::vector<int>>();
+    if (read.size() != bricks.size())
+      throw InputError(fmt::format("{}: \"atlas\".\"masks\" lists {} masks for {} bricks", manifestPath, read.size(),
+                                   bricks.size()));
+    for (const int mask : read) {
+      if (mask < 1 || mask > kEverySubBrick)
+        throw InputError(fmt::format("{}: \"atlas\".\"masks\" holds {}; a mask is 1 to 255", manifestPath, mask));
+      masks.push_back(std::uint8_t(mask));
+    }
+  }
+  BrickAtlas atlas = BrickAtlas::of(bricks, masks);
   if (slots.size() != 3 || Eigen::Vector3i(slots[0], slots[1], slots[2]) != atlas.slots)
     throw InputError(fmt::format("{}: \"atlas\".\"slots\" must be [{}, {}, {}] for {} bricks", manifestPath,
                                  atlas.slots.x(), atlas.slots.y(), atlas.slots.z(), bricks.size()));
@@ -235,6 +251,7 @@ Manifest readManifest(const nlohmann::json& m, const std::string& manifestPath) 
     if (m.contains("atlas")) {
       manifest.atlas = readAtlas(m.at("atlas"), manifestPath);
       manifest.header.heldBricks = manifest.atlas->bricks;
+      if (!manifest.atlas->masks.empty()) manifest.header.heldMasks = manifest.atlas->masks;
     }
   } catch (const nlohmann::json::exception& e) {
     throw InputError(fmt::format("{}: {}", manifestPath, oneLine(e.what())));

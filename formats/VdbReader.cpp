@@ -14,6 +14,7 @@
 #include "formats/VolumeMetadata.h"
 #include "formats/LevelChecks.h"
 #include "volume/LevelGrids.h"
+#include "volume/SubBricks.h"
 
 namespace baker {
 namespace {
@@ -41,8 +42,8 @@ InputError voxelNotHeld(const std::string& path, const std::string& name, const 
   if (v.shard)
     return InputError(fmt::format("{}: grid '{}' holds probe {}, outside the bricks of its shard {}", path, name, p,
                                   shardName(*v.shard)));
-  return InputError(fmt::format("{}: grid '{}' holds probe {}, in a brick its level's probe_state grid does not hold",
-                                path, name, p));
+  return InputError(fmt::format("{}: grid '{}' holds probe {}, in a brick or sub-brick its level's probe_state grid "
+                                "does not hold", path, name, p));
 }
 
 // Copies the active voxels of one grid into the volume, refusing voxels outside the grid.
@@ -110,9 +111,31 @@ int levelCount(const openvdb::MetaMap& meta, const std::string& path) {
   return levels;
 }
 
-// The bricks of a level's grid that hold a leaf of its probe_state grid, by increasing index.
+// The sub-bricks of a probe_state leaf with an active voxel; InputError unless each of them has
+// every voxel inside the grid active (a sub-brick is held whole or not at all).
+std::uint8_t subBricksActive(const openvdb::Int32Grid::TreeType::LeafNodeType& leaf, const ProbeGrid& g,
+                             const std::string& name, const std::string& path) {
+  const openvdb::Coord o = leaf.origin();
+  const std::int64_t brick = g.brickOf(o.x(), o.y(), o.z());
+  std::uint8_t active = 0;
+  for (auto voxel = leaf.cbeginValueOn(); voxel; ++voxel) {
+    const openvdb::Coord c = voxel.getCoord();
+    active = std::uint8_t(active | subBrickBit(c.x(), c.y(), c.z()));
+  }
+  const Eigen::Vector3i lo(o.x(), o.y(), o.z()), hi = lo + g.brickExtent(brick);
+  for (int k = lo.z(); k < hi.z(); ++k)
+    for (int j = lo.y(); j < hi.y(); ++j)
+      for (int i = lo.x(); i < hi.x(); ++i)
+        if ((active & subBrickBit(i, j, k)) && !leaf.isValueOn(openvdb::Coord(i, j, k)))
+          throw InputError(fmt::format("{}: grid '{}' holds part of the sub-brick of probe ({}, {}, {}); a level holds "
+                                       "sub-bricks of 4³ whole", path, name, i, j, k));
+  return active;
+}
+
+// The bricks of a level's grid that hold a leaf of its probe_state grid, by increasing index,
+// and the sub-bricks each holds (its active voxels).
 std::vector<std::int64_t> bricksInFile(openvdb::io::File& file, const std::string& name, const ProbeGrid& g,
-                                       const std::string& path) {
+                                       const std::string& path, std::vector<std::uint8_t>& masks) {
   if (!file.hasGrid(name)) throw InputError(fmt::format("{}: grid '{}' is missing", path, name));
   auto grid = openvdb::gridPtrCast<openvdb::Int32Grid>(file.readGrid(name));
   if (!grid) throw InputError(fmt::format("{}: grid '{}' has the wrong value type", path, name));
@@ -123,9 +146,20 @@ std::vector<std::int64_t> bricksInFile(openvdb::io::File& file, const std::strin
       throw InputError(fmt::format("{}: grid '{}' has a brick at ({}, {}, {}), outside the {} × {} × {} probes", path,
                                    name, c.x(), c.y(), c.z(), g.dims.x(), g.dims.y(), g.dims.z()));
     bricks.push_back(g.brickOf(c.x(), c.y(), c.z()));
+    masks.push_back(subBricksActive(*leaf, g, name, path));
   }
-  std::sort(bricks.begin(), bricks.end());
-  return bricks;
+  // OpenVDB visits leaves in its tree's order, not by brick index.
+  std::vector<std::size_t> order(bricks.size());
+  for (std::size_t n = 0; n < order.size(); ++n) order[n] = n;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return bricks[a] < bricks[b]; });
+  std::vector<std::int64_t> sortedBricks;
+  std::vector<std::uint8_t> sortedMasks;
+  for (const std::size_t n : order) {
+    sortedBricks.push_back(bricks[n]);
+    sortedMasks.push_back(masks[n]);
+  }
+  masks = std::move(sortedMasks);
+  return sortedBricks;
 }
 
 // A uniform volume from its open file.
@@ -168,7 +202,9 @@ AdaptiveVolume readLevelsOf(openvdb::io::File& file, const openvdb::MetaMap& met
     const std::string key = level == 0 ? "baker." : fmt::format("baker.level{}.", level);
     if (level > 0) header.grid = levelGrid(meta, key, path);
     checks.grid(level, header.grid, key);
-    header.heldBricks = bricksInFile(file, levelGridPrefix(level) + "probe_state", header.grid, path);
+    std::vector<std::uint8_t> masks;
+    header.heldBricks = bricksInFile(file, levelGridPrefix(level) + "probe_state", header.grid, path, masks);
+    header.heldMasks = std::move(masks);
     checks.held(level, header.heldBricks->size());
     volume.levels.push_back(header.emptyVolume(path));
     if (level > 0) volume.levels.back().settings.clear();

@@ -27,7 +27,7 @@
 namespace baker {
 namespace {
 
-// A grid holding the voxels of the stored bricks, every one active (a constant value is data
+// A grid holding the voxels of the stored bricks, every held one active (a constant value is data
 // here, not background). A brick is exactly one leaf node, filled in place: going voxel by
 // voxel through an accessor costs several times as much.
 template <typename GridType, typename ValueAt>
@@ -46,7 +46,10 @@ typename GridType::Ptr sparseGrid(const Volume& v, const std::vector<bool>& stor
         for (int k = origin.z(); k < std::min(origin.z() + kBrickSize, g.dims.z()); ++k)
           for (int j = origin.y(); j < std::min(origin.y() + kBrickSize, g.dims.y()); ++j)
             for (int i = origin.x(); i < std::min(origin.x() + kBrickSize, g.dims.x()); ++i)
-              leaf->setValueOn(LeafType::coordToOffset(openvdb::Coord(i, j, k)), valueAt(g.linearIndex(i, j, k)));
+              // A sub-brick the level does not hold stays inactive at the background value, so
+              // that OpenVDB's mask compression stores none of its voxels.
+              if (v.rows.row(g, i, j, k) >= 0)
+                leaf->setValueOn(LeafType::coordToOffset(openvdb::Coord(i, j, k)), valueAt(g.linearIndex(i, j, k)));
         grid->tree().addLeaf(leaf.release());
       }
   return grid;

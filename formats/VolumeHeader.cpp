@@ -77,7 +77,18 @@ Volume VolumeHeader::emptyVolume(const std::string& path, PartReading parts) con
   readSettings(text, volume);
   readShard(text, volume, path);
   if (volume.shard && parts == PartReading::OwnBricks) volume.rows = ProbeRows(grid, shardBricks(grid, *volume.shard));
-  if (heldBricks && std::int64_t(heldBricks->size()) < grid.brickCount()) volume.rows = ProbeRows(grid, *heldBricks);
+  if (heldMasks) {
+    if (!heldBricks || heldMasks->size() != heldBricks->size())
+      throw InputError(fmt::format("{}: a level lists {} sub-brick masks for its bricks", path, heldMasks->size()));
+    for (std::size_t n = 0; n < heldMasks->size(); ++n)
+      if (((*heldMasks)[n] & subBricksInGrid(grid, (*heldBricks)[n])) == 0)
+        throw InputError(fmt::format("{}: brick {} of a level holds none of its sub-bricks (mask {})", path,
+                                     (*heldBricks)[n], int((*heldMasks)[n])));
+    volume.rows = ProbeRows(grid, *heldBricks, *heldMasks);
+    if (std::int64_t(heldBricks->size()) == grid.brickCount() && !volume.rows.holdsPartialBricks()) volume.rows = ProbeRows();
+  } else if (heldBricks && std::int64_t(heldBricks->size()) < grid.brickCount()) {
+    volume.rows = ProbeRows(grid, *heldBricks);
+  }
   prepareForReading(volume, hasProbeStates);
   return volume;
 }

@@ -40,6 +40,8 @@ struct VolumeHeader {
   std::vector<std::pair<std::string, std::string>> text;  // every "baker.*" key as text
   // A level of an adaptive volume holds only these bricks (Volume::rows); none: every probe.
   std::optional<std::vector<std::int64_t>> heldBricks;
+  // Per held brick, its sub-bricks held (volume/SubBricks.h); none: every one.
+  std::optional<std::vector<std::uint8_t>> heldMasks;
 
   // Checks the header against the basis it names and the limits (InputError naming `path` and
   // the key), then returns a volume with zeroed arrays of the right sizes and the settings.

@@ -33,7 +33,11 @@ nlohmann::json exportedMetadataJson(const Volume& source, const Basis& sourceBas
 constexpr int kVolumeFormatVersion = 3;
 // 4: an adaptive volume's levels (baker.levels); only such files carry it, so that a reader of
 // version 3 refuses them instead of reading their coarsest level as the whole volume.
-constexpr int kLevelsFormatVersion = 4;
+// 5: a level's bricks may hold only some of their sub-bricks of 4³ (inactive voxels in a .vdb,
+// `masks` in an EXR atlas), so that a reader of version 4 refuses them rather than taking the
+// missing probes for held ones.
+constexpr int kLevelsFormatVersion = 5;
+constexpr int kFirstLevelsFormatVersion = 4;
 
 // Recovers volume.settings from "baker.setting.*" keys.
 void readSettings(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume);

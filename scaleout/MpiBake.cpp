@@ -71,7 +71,8 @@ MpiBakeReport bakeLevelsWithMpi(const MpiSession& session, const BakeJob& job, c
   const auto shares = everyShardsLevelBricks(placement.grids, placement.bricks, session.size());
   for (int r = 1; r < session.size(); ++r) {
     const Shard theirs{r, session.size()};
-    const std::vector<std::vector<std::int64_t>>& share = shares[std::size_t(r)];
+    std::vector<ProbeRows> share;
+    for (int k = 0; k < placement.levels(); ++k) share.push_back(placement.rows(k, shares[std::size_t(r)][std::size_t(k)]));
     std::vector<float> values(packedLevelsSize(header, share));
     session.receiveFrom(r, values);
     assembly.add(unpackLevels(header, theirs, share, values), fmt::format("rank {}", r));

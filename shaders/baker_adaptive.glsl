@@ -10,8 +10,10 @@
 // - The pool: every level's held bricks of 8³ probes, level after level (coarsest first), each
 //   level's in the order of its "atlas" "bricks"; pool slot s holds one brick.
 // - The indirection texture: unsigned integers (R32UI), one texel per brick of every level, the
-//   levels stacked along z: texel (bx, by, brickZ[l] + bz) is 1 + the pool slot of level l's brick
-//   (bx, by, bz), or 0 where the level does not hold it. Its x and y extents are the largest
+//   levels stacked along z: texel (bx, by, brickZ[l] + bz) is 0 where the level does not hold
+//   brick (bx, by, bz); otherwise its low 24 bits are 1 + the brick's pool slot and its high 8 bits
+//   the sub-bricks of 4³ the level holds of it (bit s = sx + 2·sy + 4·sz for the probes with
+//   (i / 4) % 2 = sx and so on; 0xFF the whole brick). Its x and y extents are the largest
 //   level's brick counts.
 // Level l's probe (i, j, k) sits at origin[l] + spacing[l]·(i, j, k), for i < dims[l].x and so on.
 
@@ -30,7 +32,10 @@ struct BakerCorners {
 // 1 + the pool slot of the brick holding level l's probe p, or 0 when the level does not hold it.
 uint bakerHeldSlot(highp usampler3D indirection, int brickZ, ivec3 p) {
   ivec3 brick = p / 8;
-  return texelFetch(indirection, ivec3(brick.xy, brickZ + brick.z), 0).r;
+  highp uint texel = texelFetch(indirection, ivec3(brick.xy, brickZ + brick.z), 0).r;
+  ivec3 side = (p / 4) % 2;
+  uint subBrick = uint(side.x + 2 * side.y + 4 * side.z);
+  return ((texel >> (24u + subBrick)) & 1u) != 0u ? texel & 0xFFFFFFu : 0u;
 }
 
 // The probes around `position` on level l's grid, clamped to its boundary as a texture's

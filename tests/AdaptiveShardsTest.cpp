@@ -95,7 +95,7 @@ TEST(AdaptiveShardLevels, EveryPlacedBrickInExactlyOneShard) {
 TEST(AdaptiveShardLevels, BorderProbesDependOnThePlacementNotTheShare) {
   ProbeGrid grid;
   grid.dims = Eigen::Vector3i(24, 8, 8);  // bricks 0, 1, 2 along x
-  const std::vector<bool> placed = {true, true, false};
+  const ProbeRows placed(grid, {0, 1});
   Volume whole, share;
   for (Volume* v : {&whole, &share}) v->grid = grid;
   share.rows = ProbeRows(grid, {0});
@@ -127,17 +127,23 @@ AdaptiveVolume withBrickSwapped(const AdaptiveVolume& part, std::size_t k, std::
   std::vector<std::int64_t> bricks = heldBricksInOrder(from);
   *std::find(bricks.begin(), bricks.end(), drop) = add;
   std::sort(bricks.begin(), bricks.end());
+  std::vector<std::uint8_t> masks;
+  for (const std::int64_t b : bricks) {
+    const Volume& values = b == add ? source : from;
+    masks.push_back(values.rows.holdsBrick(b) ? values.rows.subBricks(grid, b) : subBricksInGrid(grid, b));
+  }
   Volume level = volumeWithoutValues(from);
-  level.rows = ProbeRows(grid, bricks);
+  level.rows = ProbeRows(grid, bricks, masks);
   holdZeroProbes(level);
   for (const std::int64_t b : bricks) {
     const Volume& values = b == add ? source : from;
     if (!values.rows.holdsBrick(b)) continue;
-    for (const std::int64_t p : probesOfBrick(grid, b)) {
-      const std::int64_t to = level.rowOf(p), at = values.rowOf(p);
+    forEachHeldProbeOfBrick(grid, values.rows, b, [&](int i, int j, int l, std::int64_t at) {
+      const std::int64_t to = level.rows.row(grid, i, j, l);
       level.states[std::size_t(to)] = values.states[std::size_t(at)];
-      std::copy_n(values.probe(p), level.coefficientsPerProbe, level.coefficients.begin() + to * level.coefficientsPerProbe);
-    }
+      std::copy_n(values.coefficients.begin() + at * level.coefficientsPerProbe, level.coefficientsPerProbe,
+                  level.coefficients.begin() + to * level.coefficientsPerProbe);
+    });
   }
   out.levels[k] = std::move(level);
   return out;
@@ -177,6 +183,10 @@ TEST_F(AdaptiveShards, MergedPartsAreTheOneProcessBakeByteForByte) {
   }
   EXPECT_GE(std::max_element(partsHoldingLevel.begin(), partsHoldingLevel.end(),
                              [](const auto& a, const auto& b) { return a.second < b.second; })->second, 2);
+  // And some bricks hold only some of their sub-bricks, which the parts must carry over.
+  const AdaptiveVolume whole = readLevels(dir_ + "/whole.vdb");
+  EXPECT_TRUE(std::any_of(whole.levels.begin(), whole.levels.end(),
+                          [](const Volume& level) { return level.rows.holdsPartialBricks(); }));
 
   for (int count : {1, 3, 7}) {
     std::vector<std::string> parts = count == 3 ? parts_ : bakeParts(dir_, count);

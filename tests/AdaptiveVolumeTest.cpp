@@ -147,12 +147,28 @@ TEST_F(AdaptiveBake, FineBricksOnlyNearGeometry) {
     const ProbeGrid& g = p.grids[std::size_t(level)];
     EXPECT_GT(p.bricks[std::size_t(level)].size(), 0u);
     EXPECT_LT(std::int64_t(p.bricks[std::size_t(level)].size()), g.brickCount()) << "level " << level << " fills the air";
+    std::int64_t partial = 0;
+    const ProbeRows rows = p.rows(level);
     for (const std::int64_t b : p.bricks[std::size_t(level)]) {
-      // A placed brick reaches within a cell of the ground (y = 0) or of the panel (y = 60).
-      const double lo = g.position(0, g.brickCorner(b).y(), 0).y() - g.spacing;
-      const double hi = g.position(0, g.brickCorner(b).y() + g.brickExtent(b).y() - 1, 0).y() + g.spacing;
-      EXPECT_TRUE((lo <= 0.0 && hi >= 0.0) || (lo <= 60.0 && hi >= 60.0)) << "level " << level << " brick " << b;
+      // A sub-brick is placed exactly when the ground (y = 0) or the panel (y = 60) lies within
+      // its reach.
+      partial += rows.subBricks(g, b) != subBricksInGrid(g, b);
+      const Eigen::Vector3i corner = g.brickCorner(b), extent = g.brickExtent(b);
+      for (int s = 0; s < 8; ++s) {
+        if (!(subBricksInGrid(g, b) & (1 << s))) continue;
+        const Eigen::Vector3i first = corner + kSubBrickSize * Eigen::Vector3i(s & 1, (s >> 1) & 1, (s >> 2) & 1);
+        const Eigen::Vector3i last = (first.array() + kSubBrickSize).min(corner.array() + extent.array()) - 1;
+        // The placement's reach: its margin and one cell more (so that probes within the margin
+        // have every neighbour placed).
+        const double reach = (p.marginCells + 1) * g.spacing;
+        const Vector3d lo = g.position(first.x(), first.y(), first.z()).array() - reach;
+        const Vector3d hi = g.position(last.x(), last.y(), last.z()).array() + reach;
+        const auto overlaps = [&](const Vector3d& a, const Vector3d& b) { return (lo.array() <= b.array()).all() && (hi.array() >= a.array()).all(); };
+        const bool near = overlaps({-24, 0, -24}, {24, 0, 24}) || overlaps({0, 60, 0}, {1, 60, 1});
+        EXPECT_EQ(rows.row(g, first.x(), first.y(), first.z()) >= 0, near) << "level " << level << " brick " << b << " sub-brick " << s;
+      }
     }
+    EXPECT_GT(partial, 0) << "level " << level << ": sub-bricks away from the surfaces are left out";
   }
   EXPECT_LT(p.probes(), std::int64_t(probesPerAxis(scene_->bounds, 1.0).prod())) << "fewer probes than uniform at 1 m";
   EXPECT_GT(stats_.interpolatedProbes, 0);
@@ -202,7 +218,7 @@ TEST_F(AdaptiveBake, NoJumpWhereTheLevelChanges) {
   EXPECT_GE(crossings, 6) << "the lines must cross from the finest level to the coarsest and back";
 }
 
-// The C++ header decoder, given each level's grid and which bricks it holds, picks the level the
+// The C++ header decoder, given each level's grid and which sub-bricks it holds, picks the level the
 // library picks and decodes the same irradiance.
 TEST_F(AdaptiveBake, HeaderDecoderPicksTheFinestLevelAsTheLibraryDoes) {
   std::vector<std::vector<unsigned char>> held;
@@ -210,7 +226,7 @@ TEST_F(AdaptiveBake, HeaderDecoderPicksTheFinestLevelAsTheLibraryDoes) {
   for (const Volume& level : volume_->levels) {
     const ProbeGrid& g = level.grid;
     held.emplace_back(std::size_t(g.brickCount()));
-    for (std::int64_t b = 0; b < g.brickCount(); ++b) held.back()[std::size_t(b)] = level.rows.holdsBrick(b);
+    for (std::int64_t b = 0; b < g.brickCount(); ++b) held.back()[std::size_t(b)] = level.rows.subBricks(g, b);
     levels.push_back({{g.origin.x(), g.origin.y(), g.origin.z()}, g.spacing, {g.dims.x(), g.dims.y(), g.dims.z()},
                       held.back().data()});
   }
@@ -271,6 +287,7 @@ TEST_F(AdaptiveBake, VdbHoldsEveryLevel) {
     EXPECT_EQ(a.grid.origin, b.grid.origin);
     EXPECT_EQ(a.grid.spacing, b.grid.spacing);
     EXPECT_EQ(a.rows.bricks(), b.rows.bricks()) << "level " << l;
+    EXPECT_EQ(a.rows.masks(a.grid), b.rows.masks(b.grid)) << "level " << l;
     EXPECT_EQ(a.coefficients, b.coefficients) << "level " << l;
     EXPECT_EQ(a.visibility, b.visibility) << "level " << l;
     EXPECT_EQ(a.states, b.states) << "level " << l;
@@ -374,6 +391,43 @@ TEST_F(AdaptiveBake, EveryHeldBrickIsWorthStoring) {
     for (std::int64_t b = 0; b < level.grid.brickCount(); ++b)
       EXPECT_EQ(worth[std::size_t(b)], level.rows.holdsBrick(b)) << "level " << l << " brick " << b;
   }
+}
+
+// A level holding sub-bricks of a brick: the others' probes have no row, keep their rows unused and
+// are not counted; a kept brick keeps its sub-bricks and its probes' values.
+TEST(StoredBricks, SubBricksHoldOnlyTheirProbes) {
+  Volume v;
+  v.grid.dims = {12, 8, 8};  // bricks 0 (8 wide) and 1 (4 wide: sub-bricks 0, 2, 4, 6 only)
+  v.coefficientsPerProbe = 1;
+  const std::uint8_t lowerX = 0x55, upperY = 0xCC;  // sub-bricks with sx = 0; with sy = 1
+  v.rows = ProbeRows(v.grid, {1, 0}, {kEverySubBrick, upperY});
+  EXPECT_TRUE(v.rows.holdsPartialBricks());
+  EXPECT_EQ(v.rows.subBricks(v.grid, 1), lowerX) << "kept within the sub-bricks the grid has";
+  EXPECT_EQ(v.rows.row(v.grid, 0, 0, 0), -1);
+  EXPECT_GE(v.rows.row(v.grid, 0, 4, 0), 0);
+  EXPECT_EQ(v.rows.probesHeld(v.grid, 0), 8 * 4 * 8);
+  EXPECT_EQ(v.rows.probesHeld(v.grid), 8 * 4 * 8 + 4 * 8 * 8);
+  EXPECT_EQ(v.rows.count(v.grid), 8 * 8 * 8 + 4 * 8 * 8) << "rows for whole bricks";
+  v.coefficients.assign(std::size_t(v.rows.count(v.grid)), 0.0f);
+  v.states.assign(std::size_t(v.rows.count(v.grid)), ProbeState::Invalid);
+  std::int64_t held = 0;
+  for (std::int64_t r = 0; r < v.rows.count(v.grid); ++r)
+    if (v.rows.holdsRow(v.grid, r)) {
+      v.coefficients[std::size_t(r)] = float(v.rows.probeAt(v.grid, r));
+      v.states[std::size_t(r)] = ProbeState::Valid;
+      held += 1;
+    }
+  EXPECT_EQ(held, v.rows.probesHeld(v.grid));
+  const Volume kept = keepBricks(v, {true, false});
+  EXPECT_EQ(kept.rows.bricks(), (std::vector<std::int64_t>{0}));
+  EXPECT_EQ(kept.rows.subBricks(kept.grid, 0), upperY);
+  for (int k = 0; k < 8; ++k)
+    for (int j = 0; j < 8; ++j)
+      for (int i = 0; i < 8; ++i) {
+        const std::int64_t row = kept.rows.row(kept.grid, i, j, k);
+        EXPECT_EQ(row >= 0, j >= 4) << i << " " << j << " " << k;
+        if (row >= 0) EXPECT_EQ(kept.coefficients[std::size_t(row)], float(kept.grid.linearIndex(i, j, k)));
+      }
 }
 
 // Bricks 0, 2 and 3 of a 4-brick row held (in the order 3, 0, 2), brick 3 dropped: every probe
@@ -497,6 +551,8 @@ TEST(AdaptiveBakeDrops, BricksInsideGeometryAwayFromAir) {
     const AdaptiveVolume read = readLevels(path);
     for (std::size_t l = 0; l < volume.levels.size(); ++l) {
       EXPECT_EQ(read.levels[l].rows.bricks(), volume.levels[l].rows.bricks()) << path << " level " << l;
+      EXPECT_EQ(read.levels[l].rows.masks(read.levels[l].grid), volume.levels[l].rows.masks(volume.levels[l].grid))
+          << path << " level " << l;
       EXPECT_EQ(read.levels[l].coefficients, volume.levels[l].coefficients) << path << " level " << l;
     }
   }

@@ -80,6 +80,7 @@ json samplesOf(const std::string& name, std::mt19937& rng) {
 struct AdaptiveLevel {
   baker_decode::Level level;
   std::vector<int> bricks;  // held, increasing
+  std::vector<int> masks;   // of each held brick, its sub-bricks held
   std::vector<unsigned char> held;
   std::vector<float> coefficients, visibility;  // per slot, per probe of the brick
 };
@@ -93,13 +94,18 @@ AdaptiveLevel adaptiveLevel(baker_decode::Vec3 origin, double spacing, std::arra
   out.held.assign(brickCount, 0);
   // No level holds its last column of bricks along x: points there read level 0's held probes
   // renormalised, or none.
+  // Half the held bricks hold only some of their sub-bricks of 4³.
   const int bricksX = (dims[0] + 7) / 8;
+  std::bernoulli_distribution whole(0.5);
+  std::uniform_int_distribution<int> someSubBricks(1, 254);
   for (int b = 0; b < brickCount; ++b)
     if (b == 0 || (b % bricksX != bricksX - 1 && keep(rng))) {
-      out.held[b] = 1;
+      const int mask = b == 0 || whole(rng) ? 0xFF : someSubBricks(rng);
+      out.held[b] = (unsigned char)mask;
       out.bricks.push_back(b);
+      out.masks.push_back(mask);
     }
-  out.level.bricksHeld = out.held.data();
+  out.level.subBricksHeld = out.held.data();
   std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
   out.coefficients.resize(out.bricks.size() * 512 * decoder.coefficientsPerProbe());
   out.visibility.resize(out.bricks.size() * 512 * decoder.coefficientCount(0));
@@ -116,6 +122,8 @@ long long slotProbe(const AdaptiveLevel& l, long long probe) {
   const long long brick = i / 8 + (nx + 7) / 8 * (j / 8 + (ny + 7) / 8 * (k / 8));
   const auto at = std::lower_bound(l.bricks.begin(), l.bricks.end(), brick);
   if (at == l.bricks.end() || *at != brick) return -1;
+  const int subBrick = int((i / 4) % 2 + 2 * ((j / 4) % 2) + 4 * ((k / 4) % 2));
+  if (!(l.masks[std::size_t(at - l.bricks.begin())] >> subBrick & 1)) return -1;
   return (at - l.bricks.begin()) * 512 + i % 8 + 8 * (j % 8 + 8 * (k % 8));
 }
 
@@ -137,6 +145,7 @@ json adaptiveSamples(const std::string& name, std::mt19937& rng) {
                           {"spacing", l.level.spacing},
                           {"dims", l.level.dims},
                           {"bricks", l.bricks},
+                          {"masks", l.masks},
                           {"coefficients", l.coefficients},
                           {"visibility", l.visibility}});
   }

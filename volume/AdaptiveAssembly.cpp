@@ -103,49 +103,46 @@ Volume AdaptiveAssembly::level(int index, const std::vector<std::pair<std::int64
   const std::size_t k = std::size_t(index);
   const ProbeGrid& grid = first_.levels[k].grid;
   std::vector<std::int64_t> bricks;
-  for (const auto& owner : owners) bricks.push_back(owner.first);
+  std::vector<std::uint8_t> masks;
+  for (const auto& [brick, p] : owners) {
+    bricks.push_back(brick);
+    masks.push_back(parts_[p].levels[k].rows.subBricks(grid, brick));
+  }
   Volume whole = first_.levels[k];
   whole.shard.reset();
-  if (std::int64_t(bricks.size()) < grid.brickCount()) whole.rows = ProbeRows(grid, bricks);
+  whole.rows = ProbeRows(grid, bricks, masks);
+  if (std::int64_t(bricks.size()) == grid.brickCount() && !whole.rows.holdsPartialBricks()) whole.rows = ProbeRows();
   holdZeroProbes(whole);
   const int nc = whole.coefficientsPerProbe, nv = whole.visibilityPerProbe;
   for (const auto& [brick, p] : owners) {
     const Volume& part = parts_[p].levels[k];
-    const Eigen::Vector3i lo = grid.brickCorner(brick), hi = lo + grid.brickExtent(brick);
-    for (int z = lo.z(); z < hi.z(); ++z)
-      for (int y = lo.y(); y < hi.y(); ++y)
-        for (int x = lo.x(); x < hi.x(); ++x) {
-          const std::int64_t from = part.rows.row(grid, x, y, z), to = whole.rows.row(grid, x, y, z);
-          whole.states[std::size_t(to)] = part.states[std::size_t(from)];
-          whole.offsets[std::size_t(to)] = part.offsets[std::size_t(from)];
-          std::copy_n(part.coefficients.begin() + from * nc, nc, whole.coefficients.begin() + to * nc);
-          std::copy_n(part.visibility.begin() + from * nv, nv, whole.visibility.begin() + to * nv);
-        }
+    forEachHeldProbeOfBrick(grid, part.rows, brick, [&](int x, int y, int z, std::int64_t from) {
+      const std::int64_t to = whole.rows.row(grid, x, y, z);
+      whole.states[std::size_t(to)] = part.states[std::size_t(from)];
+      whole.offsets[std::size_t(to)] = part.offsets[std::size_t(from)];
+      std::copy_n(part.coefficients.begin() + from * nc, nc, whole.coefficients.begin() + to * nc);
+      std::copy_n(part.visibility.begin() + from * nv, nv, whole.visibility.begin() + to * nv);
+    });
   }
-  requireBorderStates(whole, index, bricks, owners);
+  requireBorderStates(whole, index, ProbeRows(grid, bricks, masks), owners);
   for (AdaptiveVolume& part : parts_) part.levels[k] = Volume();
   return whole;
 }
 
 // The parts' state 3 (Interpolated) must be the level's border exactly, as the placement decides
 // it: the finish gives those probes, and only those, the coarser levels' values.
-void AdaptiveAssembly::requireBorderStates(const Volume& level, int index, const std::vector<std::int64_t>& bricks,
+void AdaptiveAssembly::requireBorderStates(const Volume& level, int index, const ProbeRows& placed,
                                            const std::vector<std::pair<std::int64_t, std::size_t>>& owners) const {
   const ProbeGrid& grid = level.grid;
-  const std::vector<bool> placed = placedBricks(grid, bricks);
-  for (const auto& [brick, p] : owners) {
-    const Eigen::Vector3i lo = grid.brickCorner(brick), hi = lo + grid.brickExtent(brick);
-    for (int z = lo.z(); z < hi.z(); ++z)
-      for (int y = lo.y(); y < hi.y(); ++y)
-        for (int x = lo.x(); x < hi.x(); ++x) {
-          const bool interpolated = level.states[std::size_t(level.rows.row(grid, x, y, z))] == ProbeState::Interpolated;
-          if (interpolated != (index > 0 && onLevelBorder(grid, placed, x, y, z)))
-            throw InputError(fmt::format("{}: probe ({}, {}, {}) of level {} is {} but {} on the level's border: the "
-                                         "part is damaged or of another placement",
-                                         names_[p], x, y, z, index, interpolated ? "interpolated" : "traced",
-                                         interpolated ? "not" : "lies"));
-        }
-  }
+  for (const auto& [brick, p] : owners)
+    forEachHeldProbeOfBrick(grid, level.rows, brick, [&](int x, int y, int z, std::int64_t row) {
+      const bool interpolated = level.states[std::size_t(row)] == ProbeState::Interpolated;
+      if (interpolated != (index > 0 && onLevelBorder(grid, placed, x, y, z)))
+        throw InputError(fmt::format("{}: probe ({}, {}, {}) of level {} is {} but {} on the level's border: the "
+                                     "part is damaged or of another placement",
+                                     names_[p], x, y, z, index, interpolated ? "interpolated" : "traced",
+                                     interpolated ? "not" : "lies"));
+    });
 }
 
 AdaptiveVolume AdaptiveAssembly::finish() {
@@ -154,12 +151,17 @@ AdaptiveVolume AdaptiveAssembly::finish() {
   // the levels are put together.
   std::vector<std::vector<std::pair<std::int64_t, std::size_t>>> owned;
   std::vector<std::vector<std::int64_t>> placed;
+  std::vector<std::vector<std::uint8_t>> masks;
   for (int k = 0; k < int(first_.levels.size()); ++k) {
     owned.push_back(owners(k));
     placed.emplace_back();
-    for (const auto& owner : owned.back()) placed.back().push_back(owner.first);
+    masks.emplace_back();
+    for (const auto& [brick, p] : owned.back()) {
+      placed.back().push_back(brick);
+      masks.back().push_back(parts_[p].levels[std::size_t(k)].rows.subBricks(first_.levels[std::size_t(k)].grid, brick));
+    }
   }
-  const PlacementSummary together = summarizePlacement(placed);
+  const PlacementSummary together = summarizePlacement(placed, masks);
   if (!(together == *first_.placement))
     throw InputError(fmt::format("{} and the other parts: their bricks ({} per level, hash {}) are not the placement "
                                  "their files record ({}, hash {}): a part is damaged or of another bake",

@@ -27,7 +27,7 @@ class AdaptiveAssembly {
  private:
   std::vector<std::pair<std::int64_t, std::size_t>> owners(int index) const;
   Volume level(int index, const std::vector<std::pair<std::int64_t, std::size_t>>& owners);
-  void requireBorderStates(const Volume& level, int index, const std::vector<std::int64_t>& bricks,
+  void requireBorderStates(const Volume& level, int index, const ProbeRows& placed,
                            const std::vector<std::pair<std::int64_t, std::size_t>>& owners) const;
 
   AdaptiveVolume first_;  // the first part's grids, settings and placement (no values)

@@ -13,34 +13,24 @@ template <typename F>
 void forEachHeldProbe(const Volume& level, const F& f) {
   const ProbeGrid& g = level.grid;
   const std::vector<std::int64_t> bricks = heldBricksInOrder(level);
-  tbb::parallel_for(std::size_t(0), bricks.size(), [&](std::size_t n) {
-    const Eigen::Vector3i lo = g.brickCorner(bricks[n]), hi = lo + g.brickExtent(bricks[n]);
-    for (int k = lo.z(); k < hi.z(); ++k)
-      for (int j = lo.y(); j < hi.y(); ++j)
-        for (int i = lo.x(); i < hi.x(); ++i) f(i, j, k, level.rows.row(g, i, j, k));
-  });
+  tbb::parallel_for(std::size_t(0), bricks.size(),
+                    [&](std::size_t n) { forEachHeldProbeOfBrick(g, level.rows, bricks[n], f); });
 }
 
 }  // namespace
 
-bool onLevelBorder(const ProbeGrid& g, const std::vector<bool>& placed, int i, int j, int k) {
+bool onLevelBorder(const ProbeGrid& g, const ProbeRows& placed, int i, int j, int k) {
   for (int dz = -1; dz <= 1; ++dz)
     for (int dy = -1; dy <= 1; ++dy)
       for (int dx = -1; dx <= 1; ++dx) {
         const int a = i + dx, b = j + dy, c = k + dz;
         if (a < 0 || b < 0 || c < 0 || a >= g.dims.x() || b >= g.dims.y() || c >= g.dims.z()) continue;
-        if (!placed[std::size_t(g.brickOf(a, b, c))]) return true;
+        if (placed.row(g, a, b, c) < 0) return true;
       }
   return false;
 }
 
-std::vector<bool> placedBricks(const ProbeGrid& grid, const std::vector<std::int64_t>& bricks) {
-  std::vector<bool> placed(std::size_t(grid.brickCount()), false);
-  for (const std::int64_t b : bricks) placed[std::size_t(b)] = true;
-  return placed;
-}
-
-void markLevelBorder(Volume& level, const std::vector<bool>& placed) {
+void markLevelBorder(Volume& level, const ProbeRows& placed) {
   forEachHeldProbe(level, [&](int i, int j, int k, std::int64_t row) {
     if (onLevelBorder(level.grid, placed, i, j, k)) level.states[std::size_t(row)] = ProbeState::Interpolated;
   });

@@ -6,18 +6,15 @@
 
 namespace baker {
 
-// Per linear brick index of `grid`: whether `bricks` (a level's placement) holds it.
-std::vector<bool> placedBricks(const ProbeGrid& grid, const std::vector<std::int64_t>& bricks);
+// Whether probe (i, j, k) of `grid` has one of its 26 neighbours inside the grid that `placed` (a
+// level's placement) does not hold: a border probe of a finer level.
+bool onLevelBorder(const ProbeGrid& grid, const ProbeRows& placed, int i, int j, int k);
 
-// Whether probe (i, j, k) of `grid` has one of its 26 neighbours inside the grid in a brick
-// `placed` does not hold: a border probe of a finer level.
-bool onLevelBorder(const ProbeGrid& grid, const std::vector<bool>& placed, int i, int j, int k);
-
-// Marks ProbeState::Interpolated the border probes of a finer level's held bricks: those with one
-// of their 26 neighbours inside the grid in a brick `placed` does not hold. Decided by the
-// placement alone, so that a shard holding some of the level's bricks marks the same probes as
-// the whole bake. The bake does not trace them; finishAdaptiveLevels gives them their values.
-void markLevelBorder(Volume& level, const std::vector<bool>& placed);
+// Marks ProbeState::Interpolated the border probes of a finer level's held probes: those with one
+// of their 26 neighbours inside the grid that `placed` does not hold. Decided by the placement
+// alone, so that a shard holding some of the level's bricks marks the same probes as the whole
+// bake. The bake does not trace them; finishAdaptiveLevels gives them their values.
+void markLevelBorder(Volume& level, const ProbeRows& placed);
 
 // What an adaptive bake does once every level is traced (in one process, or its shards' parts
 // put together), level by level, coarsest first, so that a finer level reads the coarser ones as

@@ -18,11 +18,11 @@ std::vector<float> packLevels(const AdaptiveVolume& part) {
   return packed;
 }
 
-std::size_t packedLevelsSize(const AdaptiveVolume& like, const std::vector<std::vector<std::int64_t>>& share) {
+std::size_t packedLevelsSize(const AdaptiveVolume& like, const std::vector<ProbeRows>& share) {
   std::size_t size = 0;
   for (std::size_t k = 0; k < like.levels.size(); ++k) {
     const Volume& level = like.levels[k];
-    size += packedSize(level.grid, share[k], level.coefficientsPerProbe, level.visibilityPerProbe);
+    size += packedSize(level.grid, share[k], share[k].bricks(), level.coefficientsPerProbe, level.visibilityPerProbe);
   }
   return size;
 }
@@ -35,8 +35,8 @@ AdaptiveVolume levelsWithoutValues(const AdaptiveVolume& like) {
   return header;
 }
 
-AdaptiveVolume unpackLevels(const AdaptiveVolume& like, const Shard& shard,
-                            const std::vector<std::vector<std::int64_t>>& share, const std::vector<float>& packed) {
+AdaptiveVolume unpackLevels(const AdaptiveVolume& like, const Shard& shard, const std::vector<ProbeRows>& share,
+                            const std::vector<float>& packed) {
   if (packed.size() != packedLevelsSize(like, share))
     throw InputError(fmt::format("shard {}: {} values received, {} expected", shardName(shard), packed.size(),
                                  packedLevelsSize(like, share)));
@@ -46,14 +46,16 @@ AdaptiveVolume unpackLevels(const AdaptiveVolume& like, const Shard& shard,
     Volume& level = part.levels[k];
     const ProbeGrid& grid = level.grid;
     level.shard = shard;
-    if (std::int64_t(share[k].size()) < grid.brickCount()) level.rows = ProbeRows(grid, share[k]);
+    level.rows = share[k];
     holdZeroProbes(level);
-    for (const std::int64_t b : share[k])
-      for (const std::int64_t p : probesOfBrick(grid, b)) {
-        const float* next = unpackProbe(in, level, level.rowOf(p), kProbeStateCount);
-        if (!next) throw InputError(fmt::format("shard {}: probe {} of level {} has state {}", shardName(shard), p, k, *in));
+    for (const std::int64_t b : share[k].bricks())
+      forEachHeldProbeOfBrick(grid, level.rows, b, [&](int i, int j, int l, std::int64_t row) {
+        const float* next = unpackProbe(in, level, row, kProbeStateCount);
+        if (!next)
+          throw InputError(fmt::format("shard {}: probe {} of level {} has state {}", shardName(shard),
+                                       grid.linearIndex(i, j, l), k, *in));
         in = next;
-      }
+      });
   }
   return part;
 }

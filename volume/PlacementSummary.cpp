@@ -3,12 +3,15 @@
 #include <fmt/format.h>
 
 #include <charconv>
+#include <stdexcept>
 
 #include "common/Fnv1a64.h"
 
 namespace baker {
 
-PlacementSummary summarizePlacement(const std::vector<std::vector<std::int64_t>>& bricks) {
+PlacementSummary summarizePlacement(const std::vector<std::vector<std::int64_t>>& bricks,
+                                    const std::vector<std::vector<std::uint8_t>>& masks) {
+  if (masks.size() != bricks.size()) throw std::logic_error("summarizePlacement: masks per level");
   PlacementSummary summary;
   Fnv1a64 hash;
   // Little-endian whatever the machine, so that parts baked on different machines agree.
@@ -17,11 +20,16 @@ PlacementSummary summarizePlacement(const std::vector<std::vector<std::int64_t>>
     for (int i = 0; i < 8; ++i) bytes[i] = char(std::uint64_t(value) >> (8 * i) & 0xff);
     hash.add(bytes, 8);
   };
-  for (const std::vector<std::int64_t>& level : bricks) {
+  for (std::size_t k = 0; k < bricks.size(); ++k) {
+    const std::vector<std::int64_t>& level = bricks[k];
+    if (masks[k].size() != level.size()) throw std::logic_error("summarizePlacement: a mask per brick");
     summary.bricksPerLevel.push_back(std::int64_t(level.size()));
     // The count first, so that where one level ends and the next begins is part of the hash.
     add(std::int64_t(level.size()));
-    for (const std::int64_t b : level) add(b);
+    for (std::size_t n = 0; n < level.size(); ++n) {
+      add(level[n]);
+      add(masks[k][n]);
+    }
   }
   summary.fingerprint = fmt::format("{:016x}", hash.value());
   return summary;

@@ -171,8 +171,13 @@ Volume VolumeAssembly::finish() {
 
 std::size_t packedSize(const ProbeGrid& grid, const std::vector<std::int64_t>& bricks, int coefficientsPerProbe,
                        int visibilityPerProbe) {
+  return packedSize(grid, ProbeRows(), bricks, coefficientsPerProbe, visibilityPerProbe);
+}
+
+std::size_t packedSize(const ProbeGrid& grid, const ProbeRows& rows, const std::vector<std::int64_t>& bricks,
+                       int coefficientsPerProbe, int visibilityPerProbe) {
   std::size_t probes = 0;
-  for (const std::int64_t b : bricks) probes += probesOfBrick(grid, b).size();
+  for (const std::int64_t b : bricks) probes += std::size_t(rows.probesHeld(grid, b));
   return probes * std::size_t(4 + coefficientsPerProbe + visibilityPerProbe);
 }
 
@@ -180,15 +185,15 @@ std::vector<float> packBricks(const Volume& part, const std::vector<std::int64_t
   const int nc = part.coefficientsPerProbe, nv = part.visibilityPerProbe;
   std::vector<float> packed;
   packed.reserve(packedSize(part.grid, bricks, nc, nv));
-  for (const std::int64_t b : bricks)
-    for (const std::int64_t p : probesOfBrick(part.grid, b)) {
-      const std::int64_t r = part.rowOf(p);
-      if (r < 0) throw std::logic_error("packBricks: a brick the part does not hold");
+  for (const std::int64_t b : bricks) {
+    if (!part.rows.holdsBrick(b)) throw std::logic_error("packBricks: a brick the part does not hold");
+    forEachHeldProbeOfBrick(part.grid, part.rows, b, [&](int, int, int, std::int64_t r) {
       packed.push_back(float(part.states[r]));
       packed.insert(packed.end(), part.offsets[r].data(), part.offsets[r].data() + 3);
       packed.insert(packed.end(), part.coefficients.begin() + r * nc, part.coefficients.begin() + (r + 1) * nc);
       packed.insert(packed.end(), part.visibility.begin() + r * nv, part.visibility.begin() + (r + 1) * nv);
-    }
+    });
+  }
   return packed;
 }
 

@@ -61,5 +61,8 @@ const float* unpackProbe(const float* in, Volume& volume, std::int64_t row, int 
 // The size of packBricks's result for these bricks of `grid`.
 std::size_t packedSize(const ProbeGrid& grid, const std::vector<std::int64_t>& bricks, int coefficientsPerProbe,
                        int visibilityPerProbe);
+// The same for the probes of `bricks` that `rows` holds (some sub-bricks of an adaptive level).
+std::size_t packedSize(const ProbeGrid& grid, const ProbeRows& rows, const std::vector<std::int64_t>& bricks,
+                       int coefficientsPerProbe, int visibilityPerProbe);
 
 }  // namespace baker

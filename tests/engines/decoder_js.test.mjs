@@ -54,9 +54,9 @@ for ( const entry of adaptive ) {
 	const decoder = new BasisDecoder( entry.basis, 0 );
 	const perProbe = decoder.coefficientsPerProbe, count0 = decoder.coefficientCount( 0 );
 	const levels = entry.levels.map( ( l ) => {
-		const bricksHeld = new Uint8Array( l.dims.reduce( ( n, d ) => n * Math.ceil( d / 8 ), 1 ) );
-		l.bricks.forEach( ( b ) => { bricksHeld[ b ] = 1; } );
-		return { ...l, bricksHeld, values: levelProbes( l, 'coefficients', perProbe ), visibilityValues: levelProbes( l, 'visibility', count0 ) };
+		const subBricksHeld = new Uint8Array( l.dims.reduce( ( n, d ) => n * Math.ceil( d / 8 ), 1 ) );
+		l.bricks.forEach( ( b, s ) => { subBricksHeld[ b ] = l.masks[ s ]; } );
+		return { ...l, subBricksHeld, values: levelProbes( l, 'coefficients', perProbe ), visibilityValues: levelProbes( l, 'visibility', count0 ) };
 	} );
 	for ( const point of entry.points ) {
 		const picked = finestLevelNeighbourhood( point.position, levels );
