@@ -134,15 +134,17 @@ Volume AdaptiveAssembly::level(int index, const std::vector<std::pair<std::int64
 void AdaptiveAssembly::requireBorderStates(const Volume& level, int index, const ProbeRows& placed,
                                            const std::vector<std::pair<std::int64_t, std::size_t>>& owners) const {
   const ProbeGrid& grid = level.grid;
-  for (const auto& [brick, p] : owners)
-    forEachHeldProbeOfBrick(grid, level.rows, brick, [&](int x, int y, int z, std::int64_t row) {
+  for (const auto& owner : owners) {
+    const std::string& part = names_[owner.second];  // a lambda may not capture a structured binding (C++17)
+    forEachHeldProbeOfBrick(grid, level.rows, owner.first, [&](int x, int y, int z, std::int64_t row) {
       const bool interpolated = level.states[std::size_t(row)] == ProbeState::Interpolated;
       if (interpolated != (index > 0 && onLevelBorder(grid, placed, x, y, z)))
         throw InputError(fmt::format("{}: probe ({}, {}, {}) of level {} is {} but {} on the level's border: the "
                                      "part is damaged or of another placement",
-                                     names_[p], x, y, z, index, interpolated ? "interpolated" : "traced",
+                                     part, x, y, z, index, interpolated ? "interpolated" : "traced",
                                      interpolated ? "not" : "lies"));
     });
+  }
 }
 
 AdaptiveVolume AdaptiveAssembly::finish() {
