@@ -19,11 +19,12 @@ AdaptiveVolume bakeAdaptive(const Scene& scene, const RayTracer& tracer, const B
                             const std::optional<Shard>& shard) {
   const std::vector<std::vector<std::int64_t>> share =
       shard ? shardLevelBricks(placement.grids, placement.bricks, *shard) : placement.bricks;
-  // Rows are held for whole bricks (ProbeRows), sub-bricks placed or not.
+  std::vector<ProbeRows> shareRows;  // moved into the levels as they are made
   std::int64_t brickCount = 0, probes = 0;
-  for (std::size_t level = 0; level < share.size(); ++level) {
-    brickCount += std::int64_t(share[level].size());
-    for (const std::int64_t b : share[level]) probes += placement.grids[level].brickExtent(b).cast<std::int64_t>().prod();
+  for (int level = 0; level < placement.levels(); ++level) {
+    shareRows.push_back(placement.rows(level, share[std::size_t(level)]));
+    brickCount += std::int64_t(share[std::size_t(level)].size());
+    probes += shareRows.back().count(placement.grids[std::size_t(level)]);
   }
   const double needed = volumeMemoryBytes(double(probes), basis);
   if (needed > double(physicalMemoryBytes()))
@@ -46,7 +47,7 @@ AdaptiveVolume bakeAdaptive(const Scene& scene, const RayTracer& tracer, const B
   for (int index = 0; index < placement.levels(); ++index) {
     const ProbeGrid& grid = placement.grids[std::size_t(index)];
     const std::vector<std::int64_t>& bricks = share[std::size_t(index)];
-    ProbeRows rows = placement.rows(index, bricks);
+    ProbeRows rows = std::move(shareRows[std::size_t(index)]);
     const bool everyProbe = std::int64_t(bricks.size()) == grid.brickCount() && !rows.holdsPartialBricks();
     volume.levels.push_back(baker.emptyVolume(grid, everyProbe ? ProbeRows() : std::move(rows)));
     Volume& level = volume.levels.back();

@@ -101,14 +101,6 @@ std::int64_t AdaptivePlacement::probes(int level) const {
   return n;
 }
 
-std::int64_t AdaptivePlacement::slots() const {
-  std::int64_t n = 0;
-  for (int level = 0; level < levels(); ++level)
-    for (const std::int64_t b : bricks[std::size_t(level)])
-      n += grids[std::size_t(level)].brickExtent(b).cast<std::int64_t>().prod();
-  return n;
-}
-
 ProbeRows AdaptivePlacement::rows(int level) const {
   return ProbeRows(grids[std::size_t(level)], bricks[std::size_t(level)], masks[std::size_t(level)]);
 }
@@ -168,10 +160,10 @@ AdaptivePlacement placeAdaptive(const Scene& scene, const RayTracer& tracer, con
         placement.masks[level].push_back(mask);
       }
   }
-  if (placement.slots() > maxProbes)
-    throw SettingError("spacing", fmt::format("{:.4g} m over {} levels places {} probes in bricks of {} slots; the limit is "
-                                              "{} (raise the spacing or lower the levels)",
-                                              finest.spacing, levels, placement.probes(), placement.slots(), maxProbes));
+  if (placement.probes() > maxProbes)
+    throw SettingError("spacing", fmt::format("{:.4g} m over {} levels places {} probes; the limit is {} (raise the spacing "
+                                              "or lower the levels)",
+                                              finest.spacing, levels, placement.probes(), maxProbes));
   return placement;
 }
 

@@ -32,8 +32,6 @@ struct AdaptivePlacement {
   int levels() const { return int(grids.size()); }
   std::int64_t probes(int level) const;  // placed at one level
   std::int64_t probes() const;           // placed at every level
-  // What the bake holds: rows for the whole bricks placed (ProbeRows), every level.
-  std::int64_t slots() const;
   // The probes placed at `level`: every placed brick, or those of `share` (placed bricks).
   ProbeRows rows(int level) const;
   ProbeRows rows(int level, const std::vector<std::int64_t>& share) const;

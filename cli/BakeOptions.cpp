@@ -107,7 +107,7 @@ void printPlacement(std::ostream& log, const BakeJob& job) {
   const double uniform = uniformFinestProbes(job);
   log << fmt::format("  in all {} probes, {:.3g} GiB at the peak; a uniform grid at {:.4g} m would have {:.4g} probes "
                      "({:.3g}× as many)\n",
-                     p.probes(), volumeMemoryBytes(double(p.slots()), job.basis()) / double(1ull << 30),
+                     p.probes(), volumeMemoryBytes(double(p.probes()), job.basis()) / double(1ull << 30),
                      p.grids.back().spacing, uniform, uniform / double(std::max<std::int64_t>(1, p.probes())));
 }
 

@@ -29,7 +29,7 @@ std::uintmax_t bytesOf(const std::string& path) {
 // Probes of every level: a uniform volume's grid, or what the levels hold.
 std::int64_t probesHeld(const AdaptiveVolume& volume) {
   std::int64_t probes = 0;
-  for (const Volume& level : volume.levels) probes += level.rows.probesHeld(level.grid);
+  for (const Volume& level : volume.levels) probes += level.rows.count(level.grid);
   return probes;
 }
 
@@ -49,8 +49,7 @@ nlohmann::json levelsJson(const AdaptiveVolume& volume, std::int64_t (&counts)[k
   nlohmann::json levels = nlohmann::json::array();
   for (std::size_t k = 0; k < volume.levels.size(); ++k) {
     const Volume& level = volume.levels[k];
-    for (std::size_t row = 0; row < level.states.size(); ++row)
-      if (level.rows.holdsRow(level.grid, std::int64_t(row))) ++counts[int(level.states[row])];
+    for (ProbeState s : level.states) ++counts[int(s)];
     if (level.states.empty()) counts[int(ProbeState::Valid)] += level.grid.probeCount();
     const ProbeGrid& g = level.grid;
     levels.push_back({{"level", k},
@@ -58,7 +57,7 @@ nlohmann::json levelsJson(const AdaptiveVolume& volume, std::int64_t (&counts)[k
                       {"origin", {g.origin.x(), g.origin.y(), g.origin.z()}},
                       {"spacing", g.spacing},
                       {"bricks", level.rows.holdsEveryProbe() ? g.brickCount() : std::int64_t(level.rows.bricks().size())},
-                      {"probes", level.rows.probesHeld(g)}});
+                      {"probes", level.rows.count(g)}});
   }
   return levels;
 }
@@ -133,7 +132,6 @@ int runInspectCommand(int argc, char** argv) {
       float lo = std::numeric_limits<float>::infinity(), hi = -lo;
       for (const Volume& level : volume.levels)
         for (std::int64_t row = 0; row < level.rows.count(level.grid); ++row) {
-          if (!level.rows.holdsRow(level.grid, row)) continue;
           const std::int64_t probe = level.rows.probeAt(level.grid, row);
           for (int c = 0; c < grid.components; ++c) {
             const float value = gridValue(level, grid, c, probe);

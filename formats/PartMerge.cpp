@@ -34,9 +34,8 @@ MergeReport mergeAdaptiveParts(const std::vector<std::string>& parts, const Volu
   report.writeSeconds = secondsSince(writeStart);
   report.shards = int(parts.size());
   for (const Volume& level : volume.levels) {
-    report.probes += level.rows.probesHeld(level.grid);
-    for (std::size_t row = 0; row < level.states.size(); ++row)
-      report.invalidProbes += level.states[row] == ProbeState::Invalid && level.rows.holdsRow(level.grid, std::int64_t(row));
+    report.probes += level.rows.count(level.grid);
+    for (const ProbeState s : level.states) report.invalidProbes += s == ProbeState::Invalid;
   }
   report.levels = int(volume.levels.size());
   report.basis = basis->name();

@@ -393,8 +393,8 @@ TEST_F(AdaptiveBake, EveryHeldBrickIsWorthStoring) {
   }
 }
 
-// A level holding sub-bricks of a brick: the others' probes have no row, keep their rows unused and
-// are not counted; a kept brick keeps its sub-bricks and its probes' values.
+// A level holding sub-bricks of a brick: only their probes have rows, each probe one row and
+// back; a kept brick keeps its sub-bricks and its probes' values.
 TEST(StoredBricks, SubBricksHoldOnlyTheirProbes) {
   Volume v;
   v.grid.dims = {12, 8, 8};  // bricks 0 (8 wide) and 1 (4 wide: sub-bricks 0, 2, 4, 6 only)
@@ -404,30 +404,31 @@ TEST(StoredBricks, SubBricksHoldOnlyTheirProbes) {
   EXPECT_TRUE(v.rows.holdsPartialBricks());
   EXPECT_EQ(v.rows.subBricks(v.grid, 1), lowerX) << "kept within the sub-bricks the grid has";
   EXPECT_EQ(v.rows.row(v.grid, 0, 0, 0), -1);
-  EXPECT_GE(v.rows.row(v.grid, 0, 4, 0), 0);
   EXPECT_EQ(v.rows.probesHeld(v.grid, 0), 8 * 4 * 8);
-  EXPECT_EQ(v.rows.probesHeld(v.grid), 8 * 4 * 8 + 4 * 8 * 8);
-  EXPECT_EQ(v.rows.count(v.grid), 8 * 8 * 8 + 4 * 8 * 8) << "rows for whole bricks";
-  v.coefficients.assign(std::size_t(v.rows.count(v.grid)), 0.0f);
-  v.states.assign(std::size_t(v.rows.count(v.grid)), ProbeState::Invalid);
-  std::int64_t held = 0;
-  for (std::int64_t r = 0; r < v.rows.count(v.grid); ++r)
-    if (v.rows.holdsRow(v.grid, r)) {
-      v.coefficients[std::size_t(r)] = float(v.rows.probeAt(v.grid, r));
-      v.states[std::size_t(r)] = ProbeState::Valid;
-      held += 1;
-    }
-  EXPECT_EQ(held, v.rows.probesHeld(v.grid));
+  EXPECT_EQ(v.rows.count(v.grid), 8 * 4 * 8 + 4 * 8 * 8) << "a row per probe held";
+  std::vector<bool> seen(std::size_t(v.rows.count(v.grid)), false);
+  for (int k = 0; k < 8; ++k)
+    for (int j = 0; j < 8; ++j)
+      for (int i = 0; i < 12; ++i) {
+        const std::int64_t row = v.rows.row(v.grid, i, j, k);
+        ASSERT_EQ(row >= 0, i >= 8 || j >= 4) << i << " " << j << " " << k;
+        if (row < 0) continue;
+        ASSERT_LT(row, v.rows.count(v.grid));
+        EXPECT_FALSE(seen[std::size_t(row)]) << "row " << row << " twice";
+        seen[std::size_t(row)] = true;
+        EXPECT_EQ(v.rows.probeAt(v.grid, row), v.grid.linearIndex(i, j, k));
+      }
+  v.coefficients.resize(std::size_t(v.rows.count(v.grid)));
+  v.states.assign(std::size_t(v.rows.count(v.grid)), ProbeState::Valid);
+  for (std::int64_t r = 0; r < v.rows.count(v.grid); ++r) v.coefficients[std::size_t(r)] = float(v.rows.probeAt(v.grid, r));
   const Volume kept = keepBricks(v, {true, false});
   EXPECT_EQ(kept.rows.bricks(), (std::vector<std::int64_t>{0}));
   EXPECT_EQ(kept.rows.subBricks(kept.grid, 0), upperY);
+  EXPECT_EQ(kept.coefficients.size(), std::size_t(8 * 4 * 8));
   for (int k = 0; k < 8; ++k)
-    for (int j = 0; j < 8; ++j)
-      for (int i = 0; i < 8; ++i) {
-        const std::int64_t row = kept.rows.row(kept.grid, i, j, k);
-        EXPECT_EQ(row >= 0, j >= 4) << i << " " << j << " " << k;
-        if (row >= 0) EXPECT_EQ(kept.coefficients[std::size_t(row)], float(kept.grid.linearIndex(i, j, k)));
-      }
+    for (int j = 4; j < 8; ++j)
+      for (int i = 0; i < 8; ++i)
+        EXPECT_EQ(kept.coefficients[std::size_t(kept.rows.row(kept.grid, i, j, k))], float(kept.grid.linearIndex(i, j, k)));
 }
 
 // Bricks 0, 2 and 3 of a 4-brick row held (in the order 3, 0, 2), brick 3 dropped: every probe

@@ -95,7 +95,7 @@ void fillInvalidProbes(const ProbeGrid& grid, const ProbeRows& rows, const std::
   // under, as in a uniform bake, not the coarser level's.
   std::vector<Mark> marks(std::size_t(probes), kKnown);
   for (std::int64_t p = 0; p < probes; ++p)
-    if (states[p] == ProbeState::Invalid && rows.holdsRow(grid, p)) {
+    if (states[p] == ProbeState::Invalid) {
       marks[p] = kUnknown;
       std::fill_n(values.begin() + p * valuesPerProbe, width, 0.0f);
     } else if (states[p] == ProbeState::Interpolated) {

@@ -139,8 +139,7 @@ Volume keepBricks(Volume volume, const std::vector<bool>& keep) {
   // past a brick still to move: the arrays are compacted in place, not held twice.
   const ProbeRows rows(g, kept, masks);
   for (std::int64_t brick : kept)
-    moveRows(volume, volume.rows.firstRowOfBrick(brick), rows.firstRowOfBrick(brick),
-             g.brickExtent(brick).cast<std::int64_t>().prod());
+    moveRows(volume, volume.rows.firstRowOfBrick(brick), rows.firstRowOfBrick(brick), rows.probesHeld(g, brick));
   volume.rows = rows;
   resizeRows(volume, rows.count(g));
   return volume;
