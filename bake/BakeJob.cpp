@@ -28,6 +28,7 @@ BakeSettings bakeSettings(const BakeRequest& request, std::vector<PlannedEffect>
   }
   settings.projection.window = request.window;
   settings.projection.nonNegative = request.nonNegative;
+  settings.projection.signal = parseStoredSignal(request.signal);
   settings.transport = transportSettings(plan, request.bounces, request.seed);
   return settings;
 }
@@ -50,6 +51,7 @@ void recordSettings(const BakeJob& job, Volume& volume) {
   for (const PlannedEffect& e : job.plan()) volume.settings["effect." + e.name] = e.simulated ? "on" : "off";
   volume.settings["window"] = std::to_string(request.window.hannWidth);
   volume.settings["non_negative"] = request.nonNegative ? "true" : "false";
+  volume.settings["signal"] = storedSignalName(job.settings().projection.signal);
   for (const auto& [key, value] : job.basis().parameters()) volume.settings[key] = fmt::format("{}", value);
   if (job.placement()) {
     volume.settings["placement"] = "adaptive";

@@ -7,6 +7,7 @@
 #include "bake/ProbeConvergence.h"
 #include "bake/TransportPlan.h"
 #include "basis/BasisRegistry.h"
+#include "basis/StoredSignal.h"
 #include "common/Error.h"
 
 namespace baker {
@@ -36,6 +37,10 @@ void validateBakeRequest(const BakeRequest& r) {
   if (r.adaptive() && r.shard && r.levels < 2)
     throw SettingError("shard", "an adaptive bake of one level is written as a uniform volume and is not cut into "
                                 "shards; bake 2 or more levels, or bake it whole");
+  const StoredSignal signal = parseStoredSignal(r.signal);
+  if (signal == StoredSignal::Radiance && r.window.hannWidth > 0)
+    throw SettingError("window", "fades the SH bands of the irradiance fit; a radiance volume fits the samples in "
+                                 "the basis directly and has no SH bands to fade");
   requireKnownEffects(r.turnedOff);
   const std::unique_ptr<Basis> basis = makeBasis(r.basis, r.sgSharpness);
   if (r.nonNegative && !admitsNonNegativeFit(*basis))

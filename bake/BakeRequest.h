@@ -38,6 +38,9 @@ struct BakeRequest {
   std::vector<std::string> turnedOff;  // effects not to simulate (keys of the plan)
   BandWindow window;                   // Hann window on the SH bands before projecting
   bool nonNegative = false;            // coefficients >= 0 by a per-probe constrained solve
+  // What the coefficients hold: "irradiance" (E(n), one lookup per normal) or "radiance" (L(ω),
+  // from which readers reconstruct diffuse and glossy specular; basis/StoredSignal.h).
+  std::string signal = "irradiance";
   // Bake only this shard's bricks (volume/Shard.h), a part for merging; none: the whole grid.
   std::optional<Shard> shard;
   // "uniform": one grid at `spacing`. "adaptive": `levels` nested levels (volume/LevelGrids.h),

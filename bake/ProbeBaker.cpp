@@ -103,14 +103,15 @@ struct ProbeBaker::ChannelGroup {
   int firstChannel = 0;
   int channelCount = 0;
   int functions = 0;
-  // Per rotation: functions × rays, radiance → irradiance. Row-major, so that each coefficient
+  // Per rotation: functions × rays, samples → coefficients. Row-major, so that each coefficient
   // is one contiguous dot product with a probe's contiguous samples.
   std::vector<Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> fromSamples;
-  Eigen::MatrixXd fromPunctualSh;            // functions × PunctualAtProbe::shCount(): lights → irradiance
-  // functions × SH count at the samples' order: direct-view samples → irradiance, the lattice's
-  // own SH→irradiance operator, so that the samples and the lattice's share of the same light
-  // are projected alike.
-  Eigen::MatrixXd fromDirectSh;
+  // functions × the punctual expansion's count: lights → coefficients.
+  Eigen::MatrixXd fromPunctual;
+  // functions × the direct expansion's count: direct-view samples (and adaptive lattices) →
+  // coefficients; for irradiance the lattice's own SH→irradiance operator, so that the samples
+  // and the lattice's share of the same light are projected alike.
+  Eigen::MatrixXd fromDirect;
   Eigen::MatrixXd gram;                      // for the non-negative solve
 };
 
@@ -129,45 +130,84 @@ ProbeBaker::ProbeBaker(const Scene& scene, const RayTracer& tracer, const Basis&
     roundLattices_.push_back(sphericalFibonacci(settings.rays << round));
   shOrder_ = std::min(resolvableShOrder(fibonacci.size()), kMaxSampleShOrder);
   directHarmonics_ = SphericalHarmonics(shOrder_);
-  // Each rotation's SH fit of the samples serves every function set of the basis. Only the
-  // first rotation's conditioning is computed: the others have the same spectrum.
-  const SphericalHarmonics sampleSh(shOrder_);
-  std::vector<SampledFit> shFits;
+  std::vector<DirectionSet> sets;
   for (int r = 0; r < rotations; ++r) {
-    const DirectionSet set = rotated(fibonacci, seededRotation(settings.transport.seed, r));
+    sets.push_back(rotated(fibonacci, seededRotation(settings.transport.seed, r)));
     std::vector<Eigen::Vector3f> d;
-    for (const Eigen::Vector3d& v : set.directions) d.push_back(v.cast<float>());
+    for (const Eigen::Vector3d& v : sets.back().directions) d.push_back(v.cast<float>());
     directions_.push_back(std::move(d));
-    shFits.emplace_back(sampleSh, set, basis.name() + " (SH fit of the samples)",
-                        r == 0 ? SampledFit::Conditioning::Check : SampledFit::Conditioning::CheckedByRotation);
   }
-  const bool punctualAtProbe = settings.transport.directPunctual && !punctual_.empty();
+  std::vector<const SphericalFunctions*> groupFunctions;
   for (int c = 0; c < 3; ++c) {
     if (c > 0 && &basis.functions(c) == &basis.functions(c - 1)) {
       ++groups_.back().channelCount;
       continue;
     }
-    const GramOperators ops(basis.functions(c), basis.name());
-    condition_ = std::max(condition_, ops.conditionNumber());
     ChannelGroup group;
     group.firstChannel = c;
     group.channelCount = 1;
     group.functions = basis.functions(c).count();
-    // G⁻¹ B_sh C after each rotation's fit P: samples → irradiance coefficients in one operator.
-    const Eigen::MatrixXd fromSh = ops.irradianceFromSh(shOrder_, settings.projection.window);
-    for (const SampledFit& fit : shFits) group.fromSamples.push_back(fit.after(fromSh).cast<float>());
-    if (punctualAtProbe)
-      group.fromPunctualSh = ops.irradianceFromSh(punctual_.shOrder(), settings.projection.window);
-    if (!directView_.empty() || settings.convergence.adaptive()) group.fromDirectSh = fromSh;
-    if (settings.projection.nonNegative) group.gram = ops.gram();
     groups_.push_back(std::move(group));
+    groupFunctions.push_back(&basis.functions(c));
+  }
+  ownFunctions_ = StackedFunctions(groupFunctions);
+  if (settings.projection.signal == StoredSignal::Radiance)
+    buildRadianceOperators(sets);
+  else
+    buildIrradianceOperators(sets);
+}
+
+void ProbeBaker::buildIrradianceOperators(const std::vector<DirectionSet>& sets) {
+  punctualExpansion_ = &punctual_.harmonics();
+  directExpansion_ = &directHarmonics_;
+  // Each rotation's SH fit of the samples serves every function set of the basis. Only the
+  // first rotation's conditioning is computed: the others have the same spectrum.
+  const SphericalHarmonics sampleSh(shOrder_);
+  std::vector<SampledFit> shFits;
+  for (std::size_t r = 0; r < sets.size(); ++r)
+    shFits.emplace_back(sampleSh, sets[r], basis_.name() + " (SH fit of the samples)",
+                        r == 0 ? SampledFit::Conditioning::Check : SampledFit::Conditioning::CheckedByRotation);
+  const bool punctualAtProbe = settings_.transport.directPunctual && !punctual_.empty();
+  for (ChannelGroup& group : groups_) {
+    const GramOperators ops(basis_.functions(group.firstChannel), basis_.name());
+    condition_ = std::max(condition_, ops.conditionNumber());
+    // G⁻¹ B_sh C after each rotation's fit P: samples → irradiance coefficients in one operator.
+    const Eigen::MatrixXd fromSh = ops.irradianceFromSh(shOrder_, settings_.projection.window);
+    for (const SampledFit& fit : shFits) group.fromSamples.push_back(fit.after(fromSh).cast<float>());
+    if (punctualAtProbe) group.fromPunctual = ops.irradianceFromSh(punctual_.shOrder(), settings_.projection.window);
+    if (!directView_.empty() || settings_.convergence.adaptive()) group.fromDirect = fromSh;
+    if (settings_.projection.nonNegative) group.gram = ops.gram();
+  }
+}
+
+void ProbeBaker::buildRadianceOperators(const std::vector<DirectionSet>& sets) {
+  punctualExpansion_ = &ownFunctions_;
+  directExpansion_ = &ownFunctions_;
+  for (std::size_t g = 0; g < groups_.size(); ++g) {
+    ChannelGroup& group = groups_[g];
+    const GramOperators ops(basis_.functions(group.firstChannel), basis_.name());
+    condition_ = std::max(condition_, ops.conditionNumber());
+    // Weighted least squares of each rotation's samples, which reproduces any radiance the
+    // functions can hold (a constant sky, for most bases) exactly, where the quadrature's moments
+    // G⁻¹BᵀW would carry its error. Lobes are not rotation-invariant: each rotation is checked.
+    for (const DirectionSet& set : sets) {
+      const SampledFit fit(basis_.functions(group.firstChannel), set, basis_.name() + " (radiance fit of the samples)");
+      condition_ = std::max(condition_, fit.conditionNumber());
+      group.fromSamples.push_back(fit.matrix().cast<float>());
+    }
+    // Deltas' moments arrive in the stacked functions of every group: this group reads its own.
+    Eigen::MatrixXd fromOwn = Eigen::MatrixXd::Zero(group.functions, ownFunctions_.count());
+    fromOwn.middleCols(ownFunctions_.offset(int(g)), group.functions) = ops.gramInverse();
+    group.fromPunctual = fromOwn;
+    group.fromDirect = std::move(fromOwn);
+    if (settings_.projection.nonNegative) group.gram = ops.gram();
   }
 }
 
 ProbeBaker::~ProbeBaker() = default;
 
 ProbeBaker::Rounds ProbeBaker::traceRounds(const ProbeTask& task, const std::vector<PunctualAtProbe::Arrival>& lights,
-                                           std::vector<PunctualAtProbe::Arrival>* direct, Eigen::MatrixXd& latticeSh,
+                                           std::vector<PunctualAtProbe::Arrival>* direct, Eigen::MatrixXd& latticeExpansion,
                                            int taskIndex, int batchSize, RayCounts* counts,
                                            ProbeSamples* samples) const {
   const ConvergenceSettings& convergence = settings_.convergence;
@@ -180,8 +220,9 @@ ProbeBaker::Rounds ProbeBaker::traceRounds(const ProbeTask& task, const std::vec
   thread_local std::vector<float> sky;
   thread_local std::vector<double> y;
   thread_local std::vector<PunctualAtProbe::Arrival> latticeDirect;
-  y.resize(directHarmonics_.count());
-  const int count = directHarmonics_.count();
+  const SphericalFunctions& expansion = *directExpansion_;
+  const int count = expansion.count();
+  y.resize(count);
   // Sums are of n·(the lattice's estimate), n its size: divided by all the rays at the end, each
   // ray weighs the same.
   direct->clear();
@@ -205,15 +246,15 @@ ProbeBaker::Rounds ProbeBaker::traceRounds(const ProbeTask& task, const std::vec
       estimates[half] = latticeIrradiance(directions.data(), unturned.weights, radiance.data(), latticeDirect);
       for (PunctualAtProbe::Arrival& a : latticeDirect) a.irradiance *= float(rays);
       direct->insert(direct->end(), latticeDirect.begin(), latticeDirect.end());
-      // The lattice as SH deltas, like the direct-view samples: n·w·L(ω)·Y(ω) per ray.
+      // The lattice as deltas, like the direct-view samples: n·w·L(ω)·f(ω) per ray.
       for (int r = 0; r < rays; ++r) {
         const double weight = unturned.weights[r] * rays;
-        directHarmonics_.evaluate(directions[r].cast<double>(), y.data());
+        expansion.evaluate(directions[r].cast<double>(), y.data());
         const Eigen::Vector3d value = toColorSpace(space, radiance[r]).cast<double>() * weight;
         const double seen = double(sky[r]) * weight;
         for (int i = 0; i < count; ++i) {
-          for (int c = 0; c < 3; ++c) latticeSh(i, c * batchSize + taskIndex) += value[c] * y[i];
-          latticeSh(i, 3 * batchSize + taskIndex) += seen * y[i];
+          for (int c = 0; c < 3; ++c) latticeExpansion(i, c * batchSize + taskIndex) += value[c] * y[i];
+          latticeExpansion(i, 3 * batchSize + taskIndex) += seen * y[i];
         }
       }
       if (samples) {
@@ -226,18 +267,19 @@ ProbeBaker::Rounds ProbeBaker::traceRounds(const ProbeTask& task, const std::vec
     statistics.add(rays, estimates[0], estimates[1]);
   }
   const std::int64_t traced = raysAfterRounds(settings_.rays, statistics.rounds());
-  for (int c = 0; c < 4; ++c) latticeSh.col(c * batchSize + taskIndex) /= double(traced);
+  for (int c = 0; c < 4; ++c) latticeExpansion.col(c * batchSize + taskIndex) /= double(traced);
   for (PunctualAtProbe::Arrival& a : *direct) a.irradiance /= float(traced);
   if (samples)
     for (double& w : samples->weights) w /= double(traced);
   return {traced, statistics.converged(convergence)};
 }
 
-// Arrivals, per probe and channel in the colour space: SH coefficients of the punctual lights
-// (to their own order) and of the direct-view samples (to the lattice's).
-struct ProbeBaker::ArrivalHarmonics {
-  ArrivalHarmonics(const SphericalHarmonics& h, int probes) : harmonics(&h) { sh.setZero(h.count(), 3 * probes); }
-  const SphericalHarmonics* harmonics;
+// Arrivals, per probe and channel in the colour space, expanded in a function set: for
+// irradiance SH of the punctual lights (to their own order) and of the direct-view samples (to
+// the lattice's); for radiance the basis's own moments.
+struct ProbeBaker::ArrivalExpansion {
+  ArrivalExpansion(const SphericalFunctions& h, int probes) : harmonics(&h) { sh.setZero(h.count(), 3 * probes); }
+  const SphericalFunctions* harmonics;
   Eigen::MatrixXd sh;  // count × 3p
   std::atomic<bool> any{false};
 
@@ -248,7 +290,7 @@ struct ProbeBaker::ArrivalHarmonics {
     const int probes = int(sh.cols()) / 3;
     thread_local std::vector<double> rgbSh;
     rgbSh.assign(3 * std::size_t(count), 0.0);
-    PunctualAtProbe::addHarmonics(*harmonics, arrivals, rgbSh.data());
+    PunctualAtProbe::addExpansion(*harmonics, arrivals, rgbSh.data());
     for (int i = 0; i < count; ++i) {
       const Eigen::Vector3d rgb(rgbSh[i], rgbSh[count + i], rgbSh[2 * count + i]);
       const Eigen::Vector3d value = toColorSpace(space, rgb.cast<float>()).cast<double>();
@@ -331,14 +373,16 @@ void ProbeBaker::projectLattice(const SampleColumns& columns, const RotationBloc
     }
     for (int within = 0; within < block.count; ++within)
       project(groups_[0].fromSamples[block.rotation], base + 3 * block.count + within, visibilityPerProbe_,
-              float(1.0 / M_PI), visibility + std::size_t(rotations.order[block.first + within]) * visibilityPerProbe_);
+              float(visibilityScale()),
+              visibility + std::size_t(rotations.order[block.first + within]) * visibilityPerProbe_);
   }
 }
 
-void ProbeBaker::projectSh(const Eigen::MatrixXd ChannelGroup::*fromSh, const Eigen::MatrixXd& sh, int p,
-                           float* coefficients, bool accumulate) const {
+void ProbeBaker::projectExpansion(const Eigen::MatrixXd ChannelGroup::*fromExpansion, const Eigen::MatrixXd& expansion,
+                                  int p, float* coefficients, bool accumulate) const {
   for (const ChannelGroup& group : groups_) {
-    const Eigen::MatrixXd result = group.*fromSh * sh.middleCols(group.firstChannel * p, group.channelCount * p);
+    const Eigen::MatrixXd result =
+        group.*fromExpansion * expansion.middleCols(group.firstChannel * p, group.channelCount * p);
     for (int c = 0; c < group.channelCount; ++c) {
       const int offset = basis_.coefficientOffset(group.firstChannel + c);
       for (int q = 0; q < p; ++q) {
@@ -354,13 +398,12 @@ void ProbeBaker::projectSh(const Eigen::MatrixXd ChannelGroup::*fromSh, const Ei
   }
 }
 
-void ProbeBaker::projectLatticeSh(Eigen::MatrixXd& latticeSh, int p, float* coefficients, float* visibility) const {
-  // The lattices' SH means → irradiance coefficients, through the operator the direct-view
-  // samples take.
+void ProbeBaker::projectLatticeExpansion(Eigen::MatrixXd& latticeExpansion, int p, float* coefficients, float* visibility) const {
+  // The lattices' means → coefficients, through the operator the direct-view samples take.
   std::fill_n(coefficients, std::size_t(p) * coefficientsPerProbe_, 0.0f);
-  latticeSh.middleCols(3 * p, p) /= M_PI;
-  projectSh(&ChannelGroup::fromDirectSh, latticeSh, p, coefficients, false);
-  const Eigen::MatrixXd seen = groups_[0].fromDirectSh * latticeSh.middleCols(3 * p, p);
+  latticeExpansion.middleCols(3 * p, p) *= visibilityScale();
+  projectExpansion(&ChannelGroup::fromDirect, latticeExpansion, p, coefficients, false);
+  const Eigen::MatrixXd seen = groups_[0].fromDirect * latticeExpansion.middleCols(3 * p, p);
   for (int q = 0; q < p; ++q)
     for (int f = 0; f < visibilityPerProbe_; ++f) visibility[std::size_t(q) * visibilityPerProbe_ + f] = float(seen(f, q));
 }
@@ -395,12 +438,12 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
   const int columnRays = adaptive ? 0 : settings_.rays;
   SampleColumns columns(sampleStore.reserve(std::size_t(columnRays) * 4 * std::size_t(p)), columnRays, 4 * p);
   const bool punctualAtProbe = settings_.transport.directPunctual && !punctual_.empty();
-  ArrivalHarmonics punctualSh(punctual_.harmonics(), punctualAtProbe ? p : 0);
-  ArrivalHarmonics directSh(directHarmonics_, directView_.empty() ? 0 : p);
+  ArrivalExpansion punctualSh(*punctualExpansion_, punctualAtProbe ? p : 0);
+  ArrivalExpansion directSh(*directExpansion_, directView_.empty() ? 0 : p);
   // Adaptive convergence: the lattices' SH coefficients per probe, of the three channels and of
   // sky visibility (count × 4p, channel-major like directSh).
-  Eigen::MatrixXd latticeSh;
-  if (adaptive) latticeSh.setZero(directHarmonics_.count(), 4 * p);
+  Eigen::MatrixXd latticeExpansion;
+  if (adaptive) latticeExpansion.setZero(directExpansion_->count(), 4 * p);
 
   // A probe's samples depend on nothing but the probe, so they are traced a few probes per task:
   // a volume of a few bricks keeps every thread busy to the end, where whole bricks would leave
@@ -418,7 +461,7 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
         std::vector<PunctualAtProbe::Arrival> lights, direct;
         if (punctualAtProbe) lights = punctual_.visibleLights(task.position, &rangeCounts);
         if (adaptive) {
-          const Rounds rounds = traceRounds(task, lights, &direct, latticeSh, taskIndex, p, &rangeCounts, probeSamples);
+          const Rounds rounds = traceRounds(task, lights, &direct, latticeExpansion, taskIndex, p, &rangeCounts, probeSamples);
           rangeTally.add(rounds.rays, !rounds.converged);
         } else {
           traceLattice(task, rotations, s, columns, &direct, &rangeCounts, probeSamples);
@@ -439,11 +482,11 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
 
   const auto projectionStart = std::chrono::steady_clock::now();
   if (adaptive)
-    projectLatticeSh(latticeSh, p, coefficients, visibility);
+    projectLatticeExpansion(latticeExpansion, p, coefficients, visibility);
   else
     projectLattice(columns, rotations, coefficients, visibility);
-  if (punctualSh.any) projectSh(&ChannelGroup::fromPunctualSh, punctualSh.sh, p, coefficients, true);
-  if (directSh.any) projectSh(&ChannelGroup::fromDirectSh, directSh.sh, p, coefficients, true);
+  if (punctualSh.any) projectExpansion(&ChannelGroup::fromPunctual, punctualSh.sh, p, coefficients, true);
+  if (directSh.any) projectExpansion(&ChannelGroup::fromDirect, directSh.sh, p, coefficients, true);
   if (settings_.projection.nonNegative) constrainNonNegative(p, coefficients, visibility);
   projectionNanoseconds_ += std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() -
                                                                                  projectionStart)

@@ -1,6 +1,7 @@
 #pragma once
 #include <Eigen/Core>
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -13,6 +14,8 @@
 #include "basis/Basis.h"
 #include "basis/DirectionSet.h"
 #include "basis/GramOperators.h"
+#include "basis/StackedFunctions.h"
+#include "basis/StoredSignal.h"
 #include "scene/RayTracer.h"
 #include "scene/Scene.h"
 
@@ -22,6 +25,7 @@ namespace baker {
 struct ProjectionOptions {
   BandWindow window;         // Hann window on the SH bands (paper eq. 8) against ringing
   bool nonNegative = false;  // coefficients ≥ 0 by a per-probe constrained solve (NonNegativeProjection)
+  StoredSignal signal = StoredSignal::Irradiance;
 };
 
 struct BakeSettings {
@@ -63,7 +67,9 @@ Eigen::Vector3f sampledIrradiance(const ProbeSamples& samples, const Eigen::Vect
 // projection: samples → SH fit of the resolvable order → clamped-cosine convolution → exact
 // projection into the basis. A batch costs one matrix product per rotation and channel group.
 // Punctual lights seen by the probe, and the direct-view samples, enter as SH deltas through a
-// second precomputed product. With adaptive convergence a probe traces rounds of lattices that
+// second precomputed product. A radiance volume (StoredSignal) fits the samples' radiance itself,
+// by weighted least squares in the basis, and projects each delta exactly by its moments f(ω)·E,
+// with no SH between (nothing a cosine would smooth is band-limited). With adaptive convergence a probe traces rounds of lattices that
 // double until its irradiance is known well enough (ConvergenceSettings); each lattice turns by
 // a rotation of its own, drawn from (seed, probe, lattice), and enters as SH deltas like the
 // direct-view samples, so that no lattice needs an operator of its own.
@@ -92,7 +98,8 @@ class ProbeBaker {
   ~ProbeBaker();
 
   int coefficientsPerProbe() const { return coefficientsPerProbe_; }
-  // Sky visibility is stored like channel 0's irradiance, divided by π: V(n) = (1/π) ∫ V max(0, n·ω) dω.
+  // Sky visibility is stored like channel 0's signal: for irradiance divided by π,
+  // V(n) = (1/π) ∫ V max(0, n·ω) dω; for radiance V(ω) itself.
   int visibilityPerProbe() const { return visibilityPerProbe_; }
   int rotations() const { return int(directions_.size()); }
   const std::vector<Eigen::Vector3f>& directions(int rotation) const { return directions_[rotation]; }
@@ -110,32 +117,39 @@ class ProbeBaker {
 
  private:
   struct ChannelGroup;
-  struct ArrivalHarmonics;
+  struct ArrivalExpansion;
   struct RotationBlocks;
   // A fixed lattice's samples, per brick: rays × 4p (RotationBlocks says which column is whose).
   using SampleColumns = Eigen::Map<Eigen::MatrixXf>;
+  // Each group's operators from the rotated lattices (and the deltas' expansion) to coefficients.
+  void buildIrradianceOperators(const std::vector<DirectionSet>& sets);
+  void buildRadianceOperators(const std::vector<DirectionSet>& sets);
   struct Rounds {
     std::int64_t rays;
     bool converged;
   };
   // One probe's rounds, until it converges: its lattices' radiance is summed as SH into
-  // `latticeSh` (column c·batchSize + taskIndex for channel c, 3 for sky visibility), its
+  // `latticeExpansion` (column c·batchSize + taskIndex for channel c, 3 for sky visibility), its
   // direct-view samples into `direct`, both as means over all its rays; and into `samples`
   // when given.
   Rounds traceRounds(const ProbeTask& task, const std::vector<PunctualAtProbe::Arrival>& lights,
-                     std::vector<PunctualAtProbe::Arrival>* direct, Eigen::MatrixXd& latticeSh, int taskIndex,
+                     std::vector<PunctualAtProbe::Arrival>* direct, Eigen::MatrixXd& latticeExpansion, int taskIndex,
                      int batchSize, RayCounts* counts, ProbeSamples* samples) const;
   // The probe's fixed lattice, traced into its columns, with its direct-view samples.
   void traceLattice(const ProbeTask& task, const RotationBlocks& rotations, int s, SampleColumns& columns,
                     std::vector<PunctualAtProbe::Arrival>* direct, RayCounts* counts, ProbeSamples* samples) const;
   void projectLattice(const SampleColumns& columns, const RotationBlocks& rotations, float* coefficients,
                       float* visibility) const;
-  void projectLatticeSh(Eigen::MatrixXd& latticeSh, int p, float* coefficients, float* visibility) const;
-  // Irradiance coefficients of SH arrivals (count × 3p) through each group's operator `fromSh`,
-  // added to or written over `coefficients`.
-  void projectSh(const Eigen::MatrixXd ChannelGroup::*fromSh, const Eigen::MatrixXd& sh, int p, float* coefficients,
-                 bool accumulate) const;
+  void projectLatticeExpansion(Eigen::MatrixXd& latticeExpansion, int p, float* coefficients, float* visibility) const;
+  // Coefficients of arrivals expanded in an expansion's functions (count × 3p) through each
+  // group's operator `fromExpansion`, added to or written over `coefficients`.
+  void projectExpansion(const Eigen::MatrixXd ChannelGroup::*fromExpansion, const Eigen::MatrixXd& expansion, int p,
+                        float* coefficients, bool accumulate) const;
   void constrainNonNegative(int p, float* coefficients, float* visibility) const;
+  // Sky visibility's factor after the projection: 1/π turns irradiance of V into its cosine-weighted mean.
+  double visibilityScale() const {
+    return settings_.projection.signal == StoredSignal::Radiance ? 1.0 : 1.0 / M_PI;
+  }
 
   const Basis& basis_;
   BakeSettings settings_;
@@ -145,7 +159,13 @@ class ProbeBaker {
   std::vector<std::vector<Eigen::Vector3f>> directions_;  // per rotation
   std::vector<DirectionSet> roundLattices_;               // unturned, per round (adaptive convergence)
   std::vector<double> weights_;
-  SphericalHarmonics directHarmonics_{0};  // the direct-view samples' expansion: the lattice's order
+  // Deltas (lights, direct-view samples, adaptive lattices) are expanded in these functions before
+  // each group's operator: SH for irradiance (the punctual lights' order, the lattice's for the
+  // rest), for radiance the basis's own functions (`ownFunctions_`).
+  SphericalHarmonics directHarmonics_{0};
+  StackedFunctions ownFunctions_;
+  const SphericalFunctions* punctualExpansion_ = nullptr;
+  const SphericalFunctions* directExpansion_ = nullptr;
   std::vector<ChannelGroup> groups_;
   int coefficientsPerProbe_ = 0;
   int visibilityPerProbe_ = 0;

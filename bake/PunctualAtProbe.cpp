@@ -46,13 +46,13 @@ int PunctualAtProbe::shOrderFor(const SphericalFunctions& functions) {
   return degree >= 0 ? std::min(degree, kMaxShOrder) : kMaxShOrder;
 }
 
-void PunctualAtProbe::addHarmonics(const SphericalHarmonics& harmonics, const std::vector<Arrival>& arrivals,
+void PunctualAtProbe::addExpansion(const SphericalFunctions& functions, const std::vector<Arrival>& arrivals,
                                    double* sh) {
-  const int count = harmonics.count();
+  const int count = functions.count();
   thread_local std::vector<double> y;
   y.resize(count);
   for (const Arrival& a : arrivals) {
-    harmonics.evaluate(a.direction.cast<double>(), y.data());
+    functions.evaluate(a.direction.cast<double>(), y.data());
     for (int c = 0; c < 3; ++c)
       for (int i = 0; i < count; ++i) sh[c * count + i] += double(a.irradiance[c]) * y[i];
   }

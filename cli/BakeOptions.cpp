@@ -43,6 +43,10 @@ void addBakeOptions(CLI::App& app, BakeOptions& o, bool listed) {
                  "ringing around bright small sources); default: none");
   app.add_flag("--non-negative", r.nonNegative,
                "solve for coefficients >= 0 per probe instead of the linear projection");
+  app.add_option("--signal", r.signal,
+                 "what the coefficients hold: irradiance (E(n), one lookup per normal) or radiance (L(ω), from "
+                 "which `baker sample` and the decoders reconstruct diffuse and glossy specular)")
+      ->capture_default_str();
   addSceneFlags(app, r.scene);
 }
 

@@ -7,10 +7,11 @@
 #include <sstream>
 
 #include "bake/BakeJob.h"
+#include "basis/BasisRegistry.h"
 #include "cli/BakeOptions.h"
 #include "cli/CommandLine.h"
 #include "common/Error.h"
-#include "formats/VolumeSampler.h"
+#include "formats/VolumeReconstruction.h"
 #include "volume/ProbeState.h"
 
 namespace baker {
@@ -26,7 +27,7 @@ Eigen::Vector3f axis(int a) {
 
 nlohmann::json vec(const Eigen::Vector3f& v) { return {v.x(), v.y(), v.z()}; }
 
-nlohmann::json probeJson(const Basis& basis, const BakedProbes& baked, const Eigen::Vector3f& position, std::size_t i) {
+nlohmann::json probeJson(const VolumeReconstruction& reading, const BakedProbes& baked, const Eigen::Vector3f& position, std::size_t i) {
   const float* c = baked.probe(i);
   const float* v = baked.probeVisibility(i);
   const ProbeSamples& samples = baked.samples[i];
@@ -34,9 +35,9 @@ nlohmann::json probeJson(const Basis& basis, const BakedProbes& baked, const Eig
   nlohmann::json fromBasis, fromSamples, visibilityByNormal;
   for (int a = 0; a < 6; ++a) {
     const Eigen::Vector3f n = axis(a);
-    fromBasis[kAxisNames[a]] = vec(basis.reconstruct(c, n.cast<double>()));
+    fromBasis[kAxisNames[a]] = vec(reading.irradiance(c, n.cast<double>()));
     fromSamples[kAxisNames[a]] = vec(sampledIrradiance(samples, n));
-    visibilityByNormal[kAxisNames[a]] = reconstructVisibility(basis, v, n.cast<double>());
+    visibilityByNormal[kAxisNames[a]] = reading.skyVisibility(v, n.cast<double>());
   }
   double escaped = 0.0;
   for (std::size_t r = 0; r < samples.visibility.size(); ++r) escaped += samples.weights[r] * samples.visibility[r];
@@ -71,13 +72,16 @@ int runProbeCommand(int argc, char** argv) {
     for (const std::string& text : at) positions.push_back(parseTriple("--at", text).cast<float>());
     const std::unique_ptr<BakeJob> job = prepareBake(app, options, std::cerr);
     const Basis& basis = job->basis();
+    const VolumeReconstruction reading(makeBasis(basis.name(), job->request().sgSharpness),
+                                       job->settings().projection.signal);
     const BakedProbes baked = job->probesAt(positions);
     nlohmann::json probes = nlohmann::json::array();
-    for (std::size_t i = 0; i < positions.size(); ++i) probes.push_back(probeJson(basis, baked, positions[i], i));
+    for (std::size_t i = 0; i < positions.size(); ++i) probes.push_back(probeJson(reading, baked, positions[i], i));
 
     if (json) {
       const nlohmann::json j = {{"scene", job->request().scenePath},
                                 {"basis", basis.name()},
+                                {"signal", storedSignalName(reading.signal())},
                                 {"rays", job->settings().rays},
                                 {"quality", qualityName(job->request())},
                                 {"target_relative_error", job->settings().convergence.targetError},

@@ -11,6 +11,7 @@
 #include "common/Error.h"
 #include "formats/VolumeLayout.h"
 #include "formats/VolumeReader.h"
+#include "formats/VolumeReconstruction.h"
 #include "formats/VolumeSampler.h"
 
 namespace baker {
@@ -78,7 +79,7 @@ int runSampleCommand(int argc, char** argv) {
     if (!(normal.norm() > 0.0)) throw InputError("--normal must not be zero");
     normal.normalize();
     const AdaptiveVolume levels = readLevels(path);
-    const std::unique_ptr<Basis> basis = basisOf(levels.coarsest());
+    const VolumeReconstruction reading(levels.coarsest());
     // The finest level whose probes around the position are all held, as an engine picks it.
     const LevelChoice choice = finestLevelAt(levels.levels, int(levels.levels.size()), position);
     const Volume& volume = levels.levels[std::size_t(choice.level)];
@@ -87,12 +88,13 @@ int runSampleCommand(int argc, char** argv) {
     s.coefficients.resize(std::size_t(volume.coefficientsPerProbe));
     s.visibility.resize(std::size_t(volume.visibilityPerProbe));
     choice.interpolation.apply(volume, !choice.interpolation.complete(), s.coefficients.data(), s.visibility.data());
-    const Eigen::Vector3f e = basis->reconstruct(s.coefficients.data(), normal);
+    const Eigen::Vector3f e = reading.irradiance(s.coefficients.data(), normal);
     const bool hasVisibility = volume.visibilityPerProbe > 0;
-    const double sky = hasVisibility ? reconstructVisibility(*basis, s.visibility.data(), normal) : 0.0;
+    const double sky = hasVisibility ? reading.skyVisibility(s.visibility.data(), normal) : 0.0;
     if (json) {
       nlohmann::json j = {{"volume", path},
-                          {"basis", basis->name()},
+                          {"basis", reading.basis().name()},
+                          {"signal", storedSignalName(reading.signal())},
                           {"position", {position.x(), position.y(), position.z()}},
                           {"normal", {normal.x(), normal.y(), normal.z()}},
                           {"grid_position", {s.gridPosition.x(), s.gridPosition.y(), s.gridPosition.z()}},
@@ -150,6 +152,7 @@ int runInspectCommand(int argc, char** argv) {
           {"format", volumeFormatOf(path)},
           {"bytes", bytes},
           {"basis", v.basisName},
+          {"signal", storedSignalName(storedSignalOf(v.settings))},
           {"dims", {g.dims.x(), g.dims.y(), g.dims.z()}},
           {"origin", {g.origin.x(), g.origin.y(), g.origin.z()}},
           {"spacing", g.spacing},
@@ -168,8 +171,9 @@ int runInspectCommand(int argc, char** argv) {
       std::cout << j.dump(2) << "\n";
       return 0;
     }
-    std::cout << fmt::format("{}: {} bytes, basis {}, {} × {} × {} probes ({}), spacing {:.6g}, origin ({:.6g}, {:.6g}, {:.6g})\n",
-                             path, bytes, v.basisName, g.dims.x(), g.dims.y(), g.dims.z(), g.probeCount(), g.spacing,
+    std::cout << fmt::format("{}: {} bytes, basis {} ({}), {} × {} × {} probes ({}), spacing {:.6g}, origin ({:.6g}, "
+                             "{:.6g}, {:.6g})\n",
+                             path, bytes, v.basisName, storedSignalName(storedSignalOf(v.settings)), g.dims.x(), g.dims.y(), g.dims.z(), g.probeCount(), g.spacing,
                              g.origin.x(), g.origin.y(), g.origin.z());
     if (v.shard)
       std::cout << fmt::format("part: shard {} of a bake ({} of {} bricks); probes outside it count as invalid here, "

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "basis/BasisRegistry.h"
+#include "formats/VolumeReconstruction.h"
 #include "common/Error.h"
 #include "formats/AtomicFile.h"
 #include "formats/CellCentredBox.h"
@@ -85,6 +86,7 @@ Ktx2Texture3D textureOf(const Volume& v, const Basis& basis, EngineExport& repor
   t.keyValues = {{"KTXwriter", fmt::format("baker {}", BAKER_VERSION)}};
   t.texels.assign(std::size_t(t.width) * t.height * t.depth * 4, 0);
   const std::vector<bool> stored = storedBricks(v);
+  const VolumeReconstruction reading(v);
   for (int k = 0; k < g.dims.z(); ++k)
     for (int j = 0; j < g.dims.y(); ++j)
       for (int i = 0; i < g.dims.x(); ++i) {
@@ -92,7 +94,7 @@ Ktx2Texture3D textureOf(const Volume& v, const Basis& basis, EngineExport& repor
         if (!stored[g.brickOf(i, j, k)]) continue;
         const float* coefficients = v.probe(g.linearIndex(i, j, k));
         for (int face = 0; face < 6; ++face) {
-          const Eigen::Vector3f e = basis.reconstruct(coefficients, faceNormal(face));
+          const Eigen::Vector3f e = reading.irradiance(coefficients, faceNormal(face));
           const Rgb9e5Packing texel = packRgb9e5((e.cast<double>() / (M_PI * kIntensity)).cast<float>());
           report.clampedValues += texel.clamped;
           const std::size_t at = 4 * texelIndex(g, i, j, k, face);

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "basis/BasisRegistry.h"
+#include "basis/StoredSignal.h"
 #include "common/Error.h"
 #include "formats/AtomicFile.h"
 #include "formats/CellCentredBox.h"
@@ -39,12 +40,16 @@ double cosineFactor(int shIndex) {
 int shOrderOf(const Basis& basis) { return int(std::lround(std::sqrt(double(basis.coefficientCount(0))))) - 1; }
 
 // The 27 radiance coefficients of probe p in three.js's order (SH function k, channel c at
-// 3k + c); SH functions the basis lacks are 0.
+// 3k + c); SH functions the basis lacks are 0. A radiance volume holds them as they are; an
+// irradiance volume's are divided by the clamped cosine's band factors.
 void radianceOf(const Volume& v, const Basis& basis, std::int64_t p, double* out) {
   const int count = basis.coefficientCount(0);
+  const bool radiance = storedSignalOf(v.settings) == StoredSignal::Radiance;
   for (int k = 0; k < kShCount; ++k)
-    for (int c = 0; c < 3; ++c)
-      out[3 * k + c] = k < count ? double(v.probe(p)[basis.coefficientOffset(c) + k]) / cosineFactor(k) : 0.0;
+    for (int c = 0; c < 3; ++c) {
+      const double value = k < count ? double(v.probe(p)[basis.coefficientOffset(c) + k]) : 0.0;
+      out[3 * k + c] = radiance ? value : value / cosineFactor(k);
+    }
 }
 
 nlohmann::json bakerSection(const Volume& v, const Basis& basis, const EngineExport& report, double scale) {

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <nlohmann/json.hpp>
 
+#include "basis/StoredSignal.h"
 #include "common/Error.h"
 
 #include "formats/ReconstructionData.h"
@@ -38,17 +39,22 @@ std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume
       entry["index"] = std::vector<int>(g.index, g.index + g.components);
     layout.push_back(entry);
   }
+  const StoredSignal signal = storedSignalOf(volume.settings);
+  const bool radiance = signal == StoredSignal::Radiance;
   std::vector<std::pair<std::string, std::string>> meta = {
       {"baker.version", BAKER_VERSION},
       {"baker.format_version", std::to_string(kVolumeFormatVersion)},
       {"baker.basis", basis.name()},
-      {"baker.quantity", "irradiance"},
-      {"baker.units",
-       "coefficients of E(n) = integral of L(w) max(0, n.w) dw: full irradiance (not E/pi) in the scene's "
-       "radiance units times steradians; glTF numbers used as they are"},
+      {"baker.quantity", storedSignalName(signal)},
+      {"baker.units", radiance ? "coefficients of the incoming radiance L(w) in the scene's radiance units; irradiance "
+                                 "E(n) = sum of c_i K_i(n), K_i(n) = integral of f_i(w) max(0, n.w) dw (docs/DECODERS.md)"
+                               : "coefficients of E(n) = integral of L(w) max(0, n.w) dw: full irradiance (not E/pi) in "
+                                 "the scene's radiance units times steradians; glTF numbers used as they are"},
       {"baker.visibility",
-       "coefficients, in channel 0's functions, of V(n) = (1/pi) integral of V(w) max(0, n.w) dw, V(w) = 1 where a "
-       "ray escapes the scene: 1 under open sky"},
+       radiance ? "coefficients, in channel 0's functions, of V(w) = 1 where a ray escapes the scene, 0 where it hits "
+                  "geometry; (1/pi) sum of v_i K_i(n) is the cosine-weighted sky visibility"
+                : "coefficients, in channel 0's functions, of V(n) = (1/pi) integral of V(w) max(0, n.w) dw, V(w) = 1 "
+                  "where a ray escapes the scene: 1 under open sky"},
       {"baker.color_space", colorSpaceName(basis.colorSpace())},
       {"baker.layout", layout.dump()},
       {"baker.reconstruction", reconstructionData(basis).dump()},
@@ -78,6 +84,9 @@ nlohmann::json exportedMetadataJson(const Volume& source, const Basis& sourceBas
   held.coefficientsPerProbe = stored.totalCoefficients();
   held.settings = source.settings;
   held.settings["source_basis"] = sourceBasis.name();
+  // An engine's format holds irradiance, as baker reads it back, whatever the bake stored.
+  held.settings["source_signal"] = storedSignalName(storedSignalOf(source.settings));
+  held.settings["signal"] = storedSignalName(StoredSignal::Irradiance);
   for (const auto& [name, value] : sourceBasis.parameters()) {
     held.settings.erase(name);
     held.settings["source_" + name] = fmt::format("{:.17g}", value);

@@ -13,6 +13,7 @@
 #include "basis/BasisRegistry.h"
 #include "common/Error.h"
 #include "common/Timing.h"
+#include "formats/VolumeReconstruction.h"
 #include "validate/AccuracyPlot.h"
 
 namespace baker {
@@ -109,18 +110,18 @@ AccuracyStudy measureAccuracy(const BakeJob& job, AccuracyPlan plan, const std::
 
     for (const std::string& name : plan.bases)
       for (int rays : plan.rays) {
-        const std::unique_ptr<Basis> basis = makeBasis(name, job.request().sgSharpness);
+        const VolumeReconstruction reading(makeBasis(name, job.request().sgSharpness), settings.projection.signal);
         settings.rays = rays;
         const auto start = std::chrono::steady_clock::now();
         BakeStats stats;
-        const Volume volume = bakeVolume(job.scene(), job.tracer(), *basis, job.grid(), settings, &stats);
+        const Volume volume = bakeVolume(job.scene(), job.tracer(), reading.basis(), job.grid(), settings, &stats);
         AccuracyRow row{name, rays, settings.transport.bounces, secondsSince(start), stats.operatorSeconds,
                         stats.traceSeconds};
         double sumSquares = 0.0;
         std::size_t k = 0;
         for (std::int64_t p : probes)
           for (const Eigen::Vector3f& n : normals) {
-            const Eigen::Vector3f d = basis->reconstruct(volume.probe(p), n.cast<double>()) - reference[k++];
+            const Eigen::Vector3f d = reading.irradiance(volume.probe(p), n.cast<double>()) - reference[k++];
             sumSquares += d.squaredNorm() / 3.0;
             row.maxRelativeError = std::max(row.maxRelativeError, double(d.cwiseAbs().maxCoeff()) / referenceMean);
           }

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <vector>
 
-#include "formats/VolumeReader.h"
+#include "formats/VolumeReconstruction.h"
 #include "formats/VolumeSampler.h"
 #include "validate/ReferencePanoramas.h"
 
@@ -62,13 +62,13 @@ struct SliceValues {
   std::vector<float> skyUp;
 };
 
-SliceValues sliceValues(const Volume& v, const Basis& basis, const Slice& s) {
+SliceValues sliceValues(const Volume& v, const VolumeReconstruction& reading, const Slice& s) {
   SliceValues values;
   for (std::int64_t p : s.probes) {
-    values.up.push_back(basis.reconstruct(v.probe(p), kUp));
-    values.down.push_back(basis.reconstruct(v.probe(p), -kUp));
+    values.up.push_back(reading.irradiance(v.probe(p), kUp));
+    values.down.push_back(reading.irradiance(v.probe(p), -kUp));
     values.skyUp.push_back(v.visibilityPerProbe > 0
-                               ? float(reconstructVisibility(basis, v.visibility.data() + p * v.visibilityPerProbe, kUp))
+                               ? float(reading.skyVisibility(v.visibility.data() + p * v.visibilityPerProbe, kUp))
                                : 0.0f);
   }
   return values;
@@ -145,7 +145,7 @@ void drawColourBar(Preview& preview, int barWidth, int barTop) {
 }
 
 // The probe's irradiance sphere, and beside it the reference panorama's irradiance and radiance.
-void drawProbeSpheres(Preview& preview, const Volume& volume, const Basis& basis, const PreviewOptions& options,
+void drawProbeSpheres(Preview& preview, const Volume& volume, const VolumeReconstruction& reading, const PreviewOptions& options,
                       int sphereWidth, int sphereHeight, int sphereTop) {
   std::vector<Eigen::Vector3d> directions;
   for (int row = 0; row < sphereHeight; ++row)
@@ -153,7 +153,7 @@ void drawProbeSpheres(Preview& preview, const Volume& volume, const Basis& basis
       directions.push_back(panoramaDirection(sphereWidth, sphereHeight, column, row));
   const VolumeSample sample = sampleVolume(volume, *options.probe);
   std::vector<Eigen::Vector3d> e;
-  for (const Eigen::Vector3d& d : directions) e.push_back(basis.reconstruct(sample.coefficients.data(), d).cast<double>());
+  for (const Eigen::Vector3d& d : directions) e.push_back(reading.irradiance(sample.coefficients.data(), d).cast<double>());
   blit(preview.image, sphereImage(sphereWidth, sphereHeight, e, preview.exposure), kMargin, sphereTop);
   if (options.referencePanorama) {
     const RgbImage& radiance = *options.referencePanorama;
@@ -174,14 +174,14 @@ void drawProbeSpheres(Preview& preview, const Volume& volume, const Basis& basis
 }  // namespace
 
 Preview renderPreview(const Volume& volume, const PreviewOptions& options) {
-  const std::unique_ptr<Basis> basis = basisOf(volume);
+  const VolumeReconstruction reading(volume);
   const ProbeGrid& g = volume.grid;
   Preview preview;
   preview.cellPixels = std::clamp(256 / g.dims.maxCoeff(), 4, 32);
   preview.xzSliceRow = g.dims.y() / 2;
   preview.xySliceLayer = g.dims.z() / 2;
   const Slice slices[2] = {xzSlice(g, preview.xzSliceRow), xySlice(g, preview.xySliceLayer)};
-  const SliceValues values[2] = {sliceValues(volume, *basis, slices[0]), sliceValues(volume, *basis, slices[1])};
+  const SliceValues values[2] = {sliceValues(volume, reading, slices[0]), sliceValues(volume, reading, slices[1])};
 
   std::vector<double> luminance;
   for (const SliceValues& v : values)
@@ -228,7 +228,7 @@ Preview renderPreview(const Volume& volume, const PreviewOptions& options) {
   }
 
   drawColourBar(preview, 3 * panelWidth + 2 * kMargin, barTop);
-  if (options.probe) drawProbeSpheres(preview, volume, *basis, options, sphereWidth, sphereHeight, sphereTop);
+  if (options.probe) drawProbeSpheres(preview, volume, reading, options, sphereWidth, sphereHeight, sphereTop);
   return preview;
 }
 

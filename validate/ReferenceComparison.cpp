@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include "formats/VolumeReader.h"
+#include "formats/VolumeReconstruction.h"
 #include "formats/VolumeSampler.h"
 
 namespace baker {
@@ -29,7 +29,7 @@ std::vector<MetadataDifference> settingDifferences(const Volume& volume, const R
 }  // namespace
 
 ReferenceComparison compareWithReference(const Volume& volume, const ReferenceSet& set, std::size_t worstCount) {
-  const std::unique_ptr<Basis> basis = basisOf(volume);
+  const VolumeReconstruction reading(volume);
   const std::vector<Eigen::Vector3d>& normals = comparisonNormals();
   ReferenceComparison result;
   result.settingDifferences = settingDifferences(volume, set);
@@ -44,7 +44,7 @@ ReferenceComparison compareWithReference(const Volume& volume, const ReferenceSe
     const std::vector<Eigen::Vector3d> eReference = panoramaIrradiance(readRgbImage(probe.file), normals);
     const VolumeSample sample = sampleVolume(volume, probe.position);
     for (std::size_t n = 0; n < normals.size(); ++n)
-      eVolume[n] = basis->reconstruct(sample.coefficients.data(), normals[n]).cast<double>();
+      eVolume[n] = reading.irradiance(sample.coefficients.data(), normals[n]).cast<double>();
     const ProbeDifference d = probeDifference(eReference, eVolume);
     differences.push_back(d);
     probes.push_back({probe, 0.0, d.maxAbsolute, d.referenceMean});

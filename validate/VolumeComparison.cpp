@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "formats/VolumeReader.h"
+#include "formats/VolumeReconstruction.h"
 #include "formats/VolumeSampler.h"
 
 namespace baker {
@@ -59,8 +59,7 @@ bool insideCells(const ProbeGrid& grid, const Eigen::Vector3d& position) {
 }
 
 VolumeComparison compareVolumes(const Volume& reference, const Volume& candidate, std::size_t worstCount) {
-  const std::unique_ptr<Basis> referenceBasis = basisOf(reference);
-  const std::unique_ptr<Basis> candidateBasis = basisOf(candidate);
+  const VolumeReconstruction referenceReading(reference), candidateReading(candidate);
   const std::vector<Eigen::Vector3d>& normals = comparisonNormals();
   const ProbeGrid& g = reference.grid;
   const bool visibility = reference.visibilityPerProbe > 0 && candidate.visibilityPerProbe > 0;
@@ -89,12 +88,12 @@ VolumeComparison compareVolumes(const Volume& reference, const Volume& candidate
         const float* candidateVisibility =
             result.gridsMatch ? candidate.visibility.data() + p * candidate.visibilityPerProbe : sample.visibility.data();
         for (std::size_t n = 0; n < normals.size(); ++n) {
-          eReference[n] = referenceBasis->reconstruct(reference.probe(p), normals[n]).cast<double>();
-          eCandidate[n] = candidateBasis->reconstruct(coefficients, normals[n]).cast<double>();
+          eReference[n] = referenceReading.irradiance(reference.probe(p), normals[n]).cast<double>();
+          eCandidate[n] = candidateReading.irradiance(coefficients, normals[n]).cast<double>();
           if (visibility) {
-            const double vr = reconstructVisibility(
-                *referenceBasis, reference.visibility.data() + p * reference.visibilityPerProbe, normals[n]);
-            const double vc = reconstructVisibility(*candidateBasis, candidateVisibility, normals[n]);
+            const double vr = referenceReading.skyVisibility(
+                reference.visibility.data() + p * reference.visibilityPerProbe, normals[n]);
+            const double vc = candidateReading.skyVisibility(candidateVisibility, normals[n]);
             result.skyVisibilityMaxDifference = std::max(*result.skyVisibilityMaxDifference, std::abs(vc - vr));
           }
         }

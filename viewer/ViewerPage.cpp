@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "basis/StoredSignal.h"
 #include "common/Error.h"
 #include "formats/AtomicFile.h"
 #include "formats/ReconstructionData.h"
@@ -125,6 +126,11 @@ std::string viewerBundleDirectory() {
 }
 
 void writeViewerPage(const Volume& volume, const ViewerPage& page) {
+  // The page shades with the browser decoder, which reconstructs irradiance volumes.
+  if (storedSignalOf(volume.settings) == StoredSignal::Radiance)
+    throw InputError(fmt::format("{}: holds radiance (setting signal), which the viewer's decoder does not "
+                                 "reconstruct; view a bake of the same scene whose signal is irradiance",
+                                 page.volumePath));
   const std::string bundle = viewerBundleDirectory();
   AtomicDirectory out(page.outDirectory, isViewerPage);
   const std::filesystem::path dir = out.temporaryPath();

@@ -1,0 +1,69 @@
+#include "basis/DiffuseResponse.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "basis/DirectionSet.h"
+#include "basis/GramOperators.h"
+#include "common/Error.h"
+
+namespace baker {
+namespace {
+
+// (f_i)_lm · A_l to `order`: bands the clamped cosine zeroes (odd l > 1) are left out of the integration.
+Eigen::MatrixXd responseInSh(const SphericalFunctions& functions, int order) {
+  const SphericalHarmonics harmonics(order);
+  const Eigen::MatrixXd moments = innerProducts(functions, harmonics);
+  Eigen::MatrixXd response = Eigen::MatrixXd::Zero(moments.rows(), moments.cols());
+  for (int l = 0; l <= order; ++l) {
+    const double a = clampedCosineBand(l);
+    if (a == 0.0) continue;
+    response.middleCols(l * l, 2 * l + 1) = moments.middleCols(l * l, 2 * l + 1) * a;
+  }
+  return response;
+}
+
+// The responses at well-spread normals, one column each.
+Eigen::MatrixXd responsesAt(const Eigen::MatrixXd& response, const DirectionSet& normals) {
+  const int order = int(std::lround(std::sqrt(double(response.cols())))) - 1;
+  const SphericalHarmonics harmonics(order);
+  Eigen::MatrixXd y(response.cols(), Eigen::Index(normals.size()));
+  for (std::size_t k = 0; k < normals.size(); ++k) harmonics.evaluate(normals.directions[k], y.col(Eigen::Index(k)).data());
+  return response * y;
+}
+
+}  // namespace
+
+DiffuseResponse::DiffuseResponse(const SphericalFunctions& functions, const std::string& label) {
+  const int degree = functions.polynomialDegree();
+  if (degree >= 0) {
+    // A polynomial of degree d has no moment above band d: the sum is exact there.
+    fromSh_ = responseInSh(functions, degree);
+    harmonics_ = SphericalHarmonics(degree);
+    return;
+  }
+  const DirectionSet normals = sphericalFibonacci(512);
+  Eigen::MatrixXd previousValues = responsesAt(responseInSh(functions, 8), normals);
+  for (int order = 16; order <= SphericalHarmonics::kMaxOrder; order += 8) {
+    Eigen::MatrixXd next = responseInSh(functions, order);
+    const Eigen::MatrixXd values = responsesAt(next, normals);
+    if ((values - previousValues).cwiseAbs().maxCoeff() <= 1e-6 * values.cwiseAbs().maxCoeff()) {
+      fromSh_ = std::move(next);
+      harmonics_ = SphericalHarmonics(order);
+      return;
+    }
+    previousValues = values;
+  }
+  throw NumericalError(fmt::format("{}: the diffuse response of its functions has not converged at SH order {}", label,
+                                   SphericalHarmonics::kMaxOrder));
+}
+
+void DiffuseResponse::evaluate(const Eigen::Vector3d& normal, double* response) const {
+  thread_local Eigen::VectorXd y;
+  y.resize(harmonics_.count());
+  harmonics_.evaluate(normal, y.data());
+  Eigen::Map<Eigen::VectorXd>(response, count()) = fromSh_ * y;
+}
+
+}  // namespace baker

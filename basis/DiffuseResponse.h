@@ -1,0 +1,30 @@
+#pragma once
+#include <Eigen/Core>
+#include <string>
+
+#include "basis/SphericalFunctions.h"
+#include "basis/SphericalHarmonics.h"
+
+namespace baker {
+
+// The diffuse response of a function set that holds radiance: K_i(n) = ∫ f_i(ω) max(0, n·ω) dω,
+// so that a radiance fit L = Σ c_i f_i gives the irradiance E(n) = Σ c_i K_i(n) exactly, where a
+// fit of E itself in the same functions would only be E's projection. By the Funk–Hecke theorem
+// K_i(n) = Σ_lm A_l (f_i)_lm Y_lm(n): the set's SH moments scaled by the clamped cosine's bands,
+// summed until no response changes by more than 1e-6 of the largest (exact at once for SH).
+class DiffuseResponse {
+ public:
+  // NumericalError naming `label` when the sum has not converged by SphericalHarmonics::kMaxOrder.
+  DiffuseResponse(const SphericalFunctions& functions, const std::string& label);
+
+  int count() const { return int(fromSh_.rows()); }
+  int shOrder() const { return harmonics_.order(); }
+  // count() values K_i(n) for the unit normal n.
+  void evaluate(const Eigen::Vector3d& normal, double* response) const;
+
+ private:
+  SphericalHarmonics harmonics_{0};
+  Eigen::MatrixXd fromSh_;  // count × SH count: (f_i)_lm · A_l
+};
+
+}  // namespace baker

@@ -1,0 +1,26 @@
+#include "basis/StoredSignal.h"
+
+#include "common/Error.h"
+
+namespace baker {
+
+const char* storedSignalName(StoredSignal signal) {
+  return signal == StoredSignal::Radiance ? "radiance" : "irradiance";
+}
+
+StoredSignal parseStoredSignal(const std::string& name) {
+  if (name == "irradiance") return StoredSignal::Irradiance;
+  if (name == "radiance") return StoredSignal::Radiance;
+  throw SettingError("signal", "must be irradiance or radiance, not '" + name + "'");
+}
+
+StoredSignal storedSignalOf(const std::map<std::string, std::string>& settings) {
+  const auto it = settings.find("signal");
+  if (it == settings.end()) return StoredSignal::Irradiance;
+  if (it->second == "irradiance") return StoredSignal::Irradiance;
+  if (it->second == "radiance") return StoredSignal::Radiance;
+  throw InputError("setting 'signal' is '" + it->second +
+                   "': this version reads volumes of irradiance or radiance only; a newer baker wrote it");
+}
+
+}  // namespace baker

@@ -1,0 +1,42 @@
+#pragma once
+#include <Eigen/Core>
+#include <memory>
+#include <vector>
+
+#include "basis/Basis.h"
+#include "basis/DiffuseResponse.h"
+#include "basis/StoredSignal.h"
+#include "volume/Volume.h"
+
+namespace baker {
+
+// What a reader gets from a probe's (interpolated) coefficients, whatever signal the volume
+// stores (its setting "signal"): irradiance and sky visibility for a normal from either; the
+// radiance itself only from a radiance volume, whose irradiance is each function's diffuse
+// response (DiffuseResponse), not a second fit.
+class VolumeReconstruction {
+ public:
+  // InputError for a basis or signal the file names wrongly (basisOf, storedSignalOf).
+  explicit VolumeReconstruction(const Volume& volume);
+  // For coefficients fresh from a bake, before any file records what they hold.
+  VolumeReconstruction(std::unique_ptr<Basis> basis, StoredSignal signal);
+
+  const Basis& basis() const { return *basis_; }
+  StoredSignal signal() const { return signal_; }
+  // E(n) in RGB.
+  Eigen::Vector3f irradiance(const float* coefficients, const Eigen::Vector3d& normal) const;
+  // (1/π) ∫ V(ω) max(0, n·ω) dω, from coefficients in channel 0's functions.
+  double skyVisibility(const float* visibility, const Eigen::Vector3d& normal) const;
+  // L(ω) in RGB: only a radiance volume holds it (`signal()` says; a logic error otherwise).
+  Eigen::Vector3f radiance(const float* coefficients, const Eigen::Vector3d& direction) const;
+
+ private:
+  // Σ c_i K_i(n) over channel c's functions.
+  double diffuse(int channel, const float* coefficients, const Eigen::Vector3d& normal) const;
+
+  std::unique_ptr<Basis> basis_;
+  StoredSignal signal_;
+  std::vector<std::shared_ptr<const DiffuseResponse>> responses_;  // per channel (radiance only)
+};
+
+}  // namespace baker
