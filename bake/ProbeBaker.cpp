@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
@@ -17,6 +18,7 @@
 #include "basis/NonNegativeProjection.h"
 #include "basis/ProjectionOperator.h"
 #include "basis/SphericalHarmonics.h"
+#include "common/Error.h"
 
 namespace baker {
 namespace {
@@ -112,7 +114,7 @@ struct ProbeBaker::ChannelGroup {
   // coefficients; for irradiance the lattice's own SH→irradiance operator, so that the samples
   // and the lattice's share of the same light are projected alike.
   Eigen::MatrixXd fromDirect;
-  Eigen::MatrixXd gram;                      // for the non-negative solve
+  Eigen::MatrixXd gram;                      // G: for the non-negative solve and the radiance rounds
 };
 
 ProbeBaker::ProbeBaker(const Scene& scene, const RayTracer& tracer, const Basis& basis, const BakeSettings& settings,
@@ -180,6 +182,28 @@ void ProbeBaker::buildIrradianceOperators(const std::vector<DirectionSet>& sets)
   }
 }
 
+// The rounds' moments m become c = (BᵀWB)⁻¹m, the least-squares fit of the probe's own rays that
+// the fixed lattice makes, so that a constant sky is held exactly here too (the moments alone
+// would carry their quadrature's error, 0.5 % for ad-srbf at 256 rays). They are handed on as
+// the moments G·c, which projectLatticeExpansion's G⁻¹ turns back into c.
+void ProbeBaker::fitRoundsByLeastSquares(const Eigen::MatrixXd& sampledGram, Eigen::MatrixXd& latticeExpansion,
+                                         int taskIndex, int batchSize) const {
+  for (std::size_t g = 0; g < groups_.size(); ++g) {
+    const ChannelGroup& group = groups_[g];
+    const int offset = ownFunctions_.offset(int(g)), n = group.functions;
+    const Eigen::LDLT<Eigen::MatrixXd> fit(sampledGram.block(offset, offset, n, n));
+    if (fit.info() != Eigen::Success || !(fit.rcond() > 1e-12))
+      throw NumericalError(basis_.name() + ": a probe's rays do not resolve the basis's functions (radiance fit)");
+    std::vector<int> columns;
+    for (int c = 0; c < group.channelCount; ++c) columns.push_back(group.firstChannel + c);
+    if (g == 0) columns.push_back(3);  // sky visibility, in channel 0's functions
+    for (int c : columns) {
+      auto moments = latticeExpansion.block(offset, c * batchSize + taskIndex, n, 1);
+      moments = group.gram * fit.solve(Eigen::VectorXd(moments));
+    }
+  }
+}
+
 void ProbeBaker::buildRadianceOperators(const std::vector<DirectionSet>& sets) {
   punctualExpansion_ = &ownFunctions_;
   directExpansion_ = &ownFunctions_;
@@ -200,7 +224,7 @@ void ProbeBaker::buildRadianceOperators(const std::vector<DirectionSet>& sets) {
     fromOwn.middleCols(ownFunctions_.offset(int(g)), group.functions) = ops.gramInverse();
     group.fromPunctual = fromOwn;
     group.fromDirect = std::move(fromOwn);
-    if (settings_.projection.nonNegative) group.gram = ops.gram();
+    group.gram = ops.gram();
   }
 }
 
@@ -223,6 +247,9 @@ ProbeBaker::Rounds ProbeBaker::traceRounds(const ProbeTask& task, const std::vec
   const SphericalFunctions& expansion = *directExpansion_;
   const int count = expansion.count();
   y.resize(count);
+  const bool fitsRadiance = settings_.projection.signal == StoredSignal::Radiance;
+  thread_local Eigen::MatrixXd sampledGram;  // BᵀWB over the probe's lattices, lower triangle
+  if (fitsRadiance) sampledGram.setZero(count, count);
   // Sums are of n·(the lattice's estimate), n its size: divided by all the rays at the end, each
   // ray weighs the same.
   direct->clear();
@@ -256,6 +283,9 @@ ProbeBaker::Rounds ProbeBaker::traceRounds(const ProbeTask& task, const std::vec
           for (int c = 0; c < 3; ++c) latticeExpansion(i, c * batchSize + taskIndex) += value[c] * y[i];
           latticeExpansion(i, 3 * batchSize + taskIndex) += seen * y[i];
         }
+        if (fitsRadiance)
+          sampledGram.selfadjointView<Eigen::Lower>().rankUpdate(Eigen::Map<const Eigen::VectorXd>(y.data(), count),
+                                                                 weight);
       }
       if (samples) {
         samples->directions.insert(samples->directions.end(), directions.begin(), directions.end());
@@ -268,6 +298,7 @@ ProbeBaker::Rounds ProbeBaker::traceRounds(const ProbeTask& task, const std::vec
   }
   const std::int64_t traced = raysAfterRounds(settings_.rays, statistics.rounds());
   for (int c = 0; c < 4; ++c) latticeExpansion.col(c * batchSize + taskIndex) /= double(traced);
+  if (fitsRadiance) fitRoundsByLeastSquares(sampledGram / double(traced), latticeExpansion, taskIndex, batchSize);
   for (PunctualAtProbe::Arrival& a : *direct) a.irradiance /= float(traced);
   if (samples)
     for (double& w : samples->weights) w /= double(traced);

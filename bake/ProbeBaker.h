@@ -135,6 +135,8 @@ class ProbeBaker {
   Rounds traceRounds(const ProbeTask& task, const std::vector<PunctualAtProbe::Arrival>& lights,
                      std::vector<PunctualAtProbe::Arrival>* direct, Eigen::MatrixXd& latticeExpansion, int taskIndex,
                      int batchSize, RayCounts* counts, ProbeSamples* samples) const;
+  void fitRoundsByLeastSquares(const Eigen::MatrixXd& sampledGram, Eigen::MatrixXd& latticeExpansion, int taskIndex,
+                               int batchSize) const;
   // The probe's fixed lattice, traced into its columns, with its direct-view samples.
   void traceLattice(const ProbeTask& task, const RotationBlocks& rotations, int s, SampleColumns& columns,
                     std::vector<PunctualAtProbe::Arrival>* direct, RayCounts* counts, ProbeSamples* samples) const;
