@@ -10,6 +10,8 @@
 #include "bake/ProbeConvergence.h"
 #include "bake/TransportPlan.h"
 #include "basis/BasisRegistry.h"
+#include "basis/DiffuseResponse.h"
+#include "basis/StoredSignal.h"
 #include "common/FileHash.h"
 #include "common/Timing.h"
 #include "scene/GltfLoader.h"
@@ -97,6 +99,10 @@ ProbeGrid defaultGrid(const Eigen::AlignedBox3f& bounds, const Basis& basis, std
 BakeJob::BakeJob(BakeRequest request, RayObserver* observer) : request_(std::move(request)) {
   validateBakeRequest(request_);
   basis_ = makeBasis(request_.basis, request_.sgSharpness);
+  // A radiance volume is read through its functions' diffuse response: lobes too sharp for it are
+  // refused before anything is traced, not when the volume is first read.
+  if (parseStoredSignal(request_.signal) == StoredSignal::Radiance)
+    for (int c = 0; c < 3; ++c) diffuseResponseOf(*basis_, c);
   if (request_.threads > 0)
     threadLimit_ = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, request_.threads);
   const auto start = std::chrono::steady_clock::now();

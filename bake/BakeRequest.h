@@ -39,7 +39,7 @@ struct BakeRequest {
   BandWindow window;                   // Hann window on the SH bands before projecting
   bool nonNegative = false;            // coefficients >= 0 by a per-probe constrained solve
   // What the coefficients hold: "irradiance" (E(n), one lookup per normal) or "radiance" (L(ω),
-  // from which readers reconstruct diffuse and glossy specular; basis/StoredSignal.h).
+  // from which readers reconstruct irradiance by each function's diffuse response; basis/StoredSignal.h).
   std::string signal = "irradiance";
   // Bake only this shard's bricks (volume/Shard.h), a part for merging; none: the whole grid.
   std::optional<Shard> shard;

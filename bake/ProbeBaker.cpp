@@ -309,23 +309,23 @@ ProbeBaker::Rounds ProbeBaker::traceRounds(const ProbeTask& task, const std::vec
 // irradiance SH of the punctual lights (to their own order) and of the direct-view samples (to
 // the lattice's); for radiance the basis's own moments.
 struct ProbeBaker::ArrivalExpansion {
-  ArrivalExpansion(const SphericalFunctions& h, int probes) : harmonics(&h) { sh.setZero(h.count(), 3 * probes); }
-  const SphericalFunctions* harmonics;
-  Eigen::MatrixXd sh;  // count × 3p
+  ArrivalExpansion(const SphericalFunctions& f, int probes) : functions(&f) { values.setZero(f.count(), 3 * probes); }
+  const SphericalFunctions* functions;
+  Eigen::MatrixXd values;  // count × 3p
   std::atomic<bool> any{false};
 
   void add(const std::vector<PunctualAtProbe::Arrival>& arrivals, int taskIndex, ColorSpace space) {
     if (arrivals.empty()) return;
     any = true;
-    const int count = harmonics->count();
-    const int probes = int(sh.cols()) / 3;
-    thread_local std::vector<double> rgbSh;
-    rgbSh.assign(3 * std::size_t(count), 0.0);
-    PunctualAtProbe::addExpansion(*harmonics, arrivals, rgbSh.data());
+    const int count = functions->count();
+    const int probes = int(values.cols()) / 3;
+    thread_local std::vector<double> rgb;
+    rgb.assign(3 * std::size_t(count), 0.0);
+    PunctualAtProbe::addExpansion(*functions, arrivals, rgb.data());
     for (int i = 0; i < count; ++i) {
-      const Eigen::Vector3d rgb(rgbSh[i], rgbSh[count + i], rgbSh[2 * count + i]);
-      const Eigen::Vector3d value = toColorSpace(space, rgb.cast<float>()).cast<double>();
-      for (int c = 0; c < 3; ++c) sh(i, c * probes + taskIndex) = value[c];
+      const Eigen::Vector3d arrival(rgb[i], rgb[count + i], rgb[2 * count + i]);
+      const Eigen::Vector3d value = toColorSpace(space, arrival.cast<float>()).cast<double>();
+      for (int c = 0; c < 3; ++c) values(i, c * probes + taskIndex) = value[c];
     }
   }
 };
@@ -469,10 +469,11 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
   const int columnRays = adaptive ? 0 : settings_.rays;
   SampleColumns columns(sampleStore.reserve(std::size_t(columnRays) * 4 * std::size_t(p)), columnRays, 4 * p);
   const bool punctualAtProbe = settings_.transport.directPunctual && !punctual_.empty();
-  ArrivalExpansion punctualSh(*punctualExpansion_, punctualAtProbe ? p : 0);
-  ArrivalExpansion directSh(*directExpansion_, directView_.empty() ? 0 : p);
-  // Adaptive convergence: the lattices' SH coefficients per probe, of the three channels and of
-  // sky visibility (count × 4p, channel-major like directSh).
+  ArrivalExpansion punctualArrivals(*punctualExpansion_, punctualAtProbe ? p : 0);
+  ArrivalExpansion directArrivals(*directExpansion_, directView_.empty() ? 0 : p);
+  // Adaptive convergence: the lattices' expansion per probe (SH, or for radiance the basis's
+  // moments), of the three channels and of sky visibility (count × 4p, channel-major like
+  // directArrivals).
   Eigen::MatrixXd latticeExpansion;
   if (adaptive) latticeExpansion.setZero(directExpansion_->count(), 4 * p);
 
@@ -498,8 +499,8 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
           traceLattice(task, rotations, s, columns, &direct, &rangeCounts, probeSamples);
           rangeTally.add(settings_.rays, false);
         }
-        punctualSh.add(lights, taskIndex, basis_.colorSpace());
-        directSh.add(direct, taskIndex, basis_.colorSpace());
+        punctualArrivals.add(lights, taskIndex, basis_.colorSpace());
+        directArrivals.add(direct, taskIndex, basis_.colorSpace());
         if (probeSamples) {
           probeSamples->punctual = std::move(lights);
           probeSamples->direct = std::move(direct);
@@ -516,8 +517,8 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
     projectLatticeExpansion(latticeExpansion, p, coefficients, visibility);
   else
     projectLattice(columns, rotations, coefficients, visibility);
-  if (punctualSh.any) projectExpansion(&ChannelGroup::fromPunctual, punctualSh.sh, p, coefficients, true);
-  if (directSh.any) projectExpansion(&ChannelGroup::fromDirect, directSh.sh, p, coefficients, true);
+  if (punctualArrivals.any) projectExpansion(&ChannelGroup::fromPunctual, punctualArrivals.values, p, coefficients, true);
+  if (directArrivals.any) projectExpansion(&ChannelGroup::fromDirect, directArrivals.values, p, coefficients, true);
   if (settings_.projection.nonNegative) constrainNonNegative(p, coefficients, visibility);
   projectionNanoseconds_ += std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() -
                                                                                  projectionStart)

@@ -67,12 +67,16 @@ Eigen::Vector3f sampledIrradiance(const ProbeSamples& samples, const Eigen::Vect
 // projection: samples → SH fit of the resolvable order → clamped-cosine convolution → exact
 // projection into the basis. A batch costs one matrix product per rotation and channel group.
 // Punctual lights seen by the probe, and the direct-view samples, enter as SH deltas through a
-// second precomputed product. A radiance volume (StoredSignal) fits the samples' radiance itself,
-// by weighted least squares in the basis, and projects each delta exactly by its moments f(ω)·E,
-// with no SH between (nothing a cosine would smooth is band-limited). With adaptive convergence a probe traces rounds of lattices that
+// second precomputed product. With adaptive convergence a probe traces rounds of lattices that
 // double until its irradiance is known well enough (ConvergenceSettings); each lattice turns by
 // a rotation of its own, drawn from (seed, probe, lattice), and enters as SH deltas like the
 // direct-view samples, so that no lattice needs an operator of its own.
+//
+// A radiance volume (StoredSignal) fits the radiance itself: each rotation's samples by weighted
+// least squares in the basis, so that whatever the functions can hold (a constant sky) comes out
+// exactly, and the deltas by their exact moments f(ω)·E through G⁻¹, where SH truncation would
+// blur them. Adaptive rounds sum the lattices' moments and their sampled Gram matrix BᵀWB per
+// probe and solve the same least squares over the probe's own rays.
 class ProbeBaker {
  public:
   // Which sampler made a volume, recorded in its metadata (setting "sampler") so that `validate`

@@ -47,14 +47,14 @@ int PunctualAtProbe::shOrderFor(const SphericalFunctions& functions) {
 }
 
 void PunctualAtProbe::addExpansion(const SphericalFunctions& functions, const std::vector<Arrival>& arrivals,
-                                   double* sh) {
+                                   double* moments) {
   const int count = functions.count();
   thread_local std::vector<double> y;
   y.resize(count);
   for (const Arrival& a : arrivals) {
     functions.evaluate(a.direction.cast<double>(), y.data());
     for (int c = 0; c < 3; ++c)
-      for (int i = 0; i < count; ++i) sh[c * count + i] += double(a.irradiance[c]) * y[i];
+      for (int i = 0; i < count; ++i) moments[c * count + i] += double(a.irradiance[c]) * y[i];
   }
 }
 

@@ -44,11 +44,9 @@ class PunctualAtProbe {
 
   // The lights that reach `position` unoccluded (shadow rays from the probe).
   std::vector<Arrival> visibleLights(const Eigen::Vector3f& position, RayCounts* counts) const;
-  // Adds E⊥·Y(ω) in RGB of each arrival to sh (shCount() × 3, column-major).
-  void addHarmonics(const std::vector<Arrival>& arrivals, double* sh) const { addExpansion(harmonics_, arrivals, sh); }
   // E⊥·f(ω) in RGB of each arrival for any function set (functions.count() × 3): its moments in
   // that set, which a radiance fit takes exactly, where SH serve the irradiance fit.
-  static void addExpansion(const SphericalFunctions& functions, const std::vector<Arrival>& arrivals, double* sh);
+  static void addExpansion(const SphericalFunctions& functions, const std::vector<Arrival>& arrivals, double* moments);
 
  private:
   const Scene& scene_;

@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <map>
+#include <mutex>
 
 #include "basis/DirectionSet.h"
 #include "basis/GramOperators.h"
@@ -64,6 +66,19 @@ void DiffuseResponse::evaluate(const Eigen::Vector3d& normal, double* response) 
   y.resize(harmonics_.count());
   harmonics_.evaluate(normal, y.data());
   Eigen::Map<Eigen::VectorXd>(response, count()) = fromSh_ * y;
+}
+
+std::shared_ptr<const DiffuseResponse> diffuseResponseOf(const Basis& basis, int channel) {
+  int first = channel;
+  while (first > 0 && &basis.functions(first - 1) == &basis.functions(channel)) --first;
+  std::string key = fmt::format("{}/{}", basis.name(), first);
+  for (const auto& [name, value] : basis.parameters()) key += fmt::format("/{}={:.17g}", name, value);
+  static std::mutex mutex;
+  static std::map<std::string, std::shared_ptr<const DiffuseResponse>> built;
+  const std::lock_guard<std::mutex> lock(mutex);
+  std::shared_ptr<const DiffuseResponse>& response = built[key];
+  if (!response) response = std::make_shared<const DiffuseResponse>(basis.functions(channel), basis.name());
+  return response;
 }
 
 }  // namespace baker

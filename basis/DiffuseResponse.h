@@ -1,7 +1,9 @@
 #pragma once
 #include <Eigen/Core>
+#include <memory>
 #include <string>
 
+#include "basis/Basis.h"
 #include "basis/SphericalFunctions.h"
 #include "basis/SphericalHarmonics.h"
 
@@ -26,5 +28,10 @@ class DiffuseResponse {
   SphericalHarmonics harmonics_{0};
   Eigen::MatrixXd fromSh_;  // count × SH count: (f_i)_lm · A_l
 };
+
+// The response of channel `channel`'s functions, built once per process for each basis (its name
+// and parameters) and function set: it costs the SH moments of the set to the converged order.
+// NumericalError as the constructor.
+std::shared_ptr<const DiffuseResponse> diffuseResponseOf(const Basis& basis, int channel);
 
 }  // namespace baker

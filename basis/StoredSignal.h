@@ -7,7 +7,7 @@ namespace baker {
 // What a volume's basis coefficients hold. Irradiance: E(n) itself, fitted in the basis, so a
 // reader reconstructs E with one basis lookup (the paper's use). Radiance: the incoming radiance
 // L(ω), fitted in the basis, from which a reader reconstructs E(n) by each function's diffuse
-// response, and glossy specular besides (DiffuseResponse). Sky visibility follows the same
+// response (DiffuseResponse). Sky visibility follows the same
 // choice: (1/π)∫V max(0, n·ω) dω, or V(ω) itself.
 enum class StoredSignal { Irradiance, Radiance };
 

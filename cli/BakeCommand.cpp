@@ -248,7 +248,8 @@ int runBakeCommand(int argc, char** argv) {
     const auto start = std::chrono::steady_clock::now();
     std::ostringstream silenced;
     const std::unique_ptr<BakeJob> job = prepareBake(app, options, quiet ? silenced : std::cerr);
-    printExportPlan(quiet ? silenced : std::cerr, output, job->basis(), nonNegativeForFormat);
+    printExportPlan(quiet ? silenced : std::cerr, output, job->basis(), job->settings().projection.signal,
+                    nonNegativeForFormat);
     if (dryRun) {
       if (json) std::cout << dryRunJson(*job).dump(2) << "\n";
       return 0;

@@ -44,8 +44,8 @@ void addBakeOptions(CLI::App& app, BakeOptions& o, bool listed) {
   app.add_flag("--non-negative", r.nonNegative,
                "solve for coefficients >= 0 per probe instead of the linear projection");
   app.add_option("--signal", r.signal,
-                 "what the coefficients hold: irradiance (E(n), one lookup per normal) or radiance (L(ω), from "
-                 "which `baker sample` and the decoders reconstruct diffuse and glossy specular)")
+                 "what the coefficients hold: irradiance (E(n), one lookup per normal) or radiance (L(ω), whose "
+                 "irradiance `baker sample` reconstructs from each function's diffuse response)")
       ->capture_default_str();
   addSceneFlags(app, r.scene);
 }
@@ -121,8 +121,9 @@ void printPlan(std::ostream& out, const std::vector<PlannedEffect>& plan) {
     out << fmt::format("  {:<16} {:<3}  {}\n", e.name, e.simulated ? "on" : "off", e.reason);
 }
 
-void printExportPlan(std::ostream& log, const VolumeOutput& output, const Basis& basis, bool nonNegativeForFormat) {
-  if (const std::string conversion = volumeConversion(output, basis); !conversion.empty())
+void printExportPlan(std::ostream& log, const VolumeOutput& output, const Basis& basis, StoredSignal signal,
+                     bool nonNegativeForFormat) {
+  if (const std::string conversion = volumeConversion(output, basis, signal); !conversion.empty())
     log << fmt::format("export for {}: {}{}\n", volumeFormatName(output.format), conversion,
                        nonNegativeForFormat ? "; the fit is solved for coefficients >= 0, which the format's texels hold"
                                             : "");

@@ -42,7 +42,8 @@ std::unique_ptr<BakeJob> prepareBake(const CLI::App& app, const BakeOptions& opt
 
 void printPlan(std::ostream& out, const std::vector<PlannedEffect>& plan);
 // The line saying how an engine's format will hold the basis (nothing for baker's own formats).
-void printExportPlan(std::ostream& log, const VolumeOutput& output, const Basis& basis, bool nonNegativeForFormat);
+void printExportPlan(std::ostream& log, const VolumeOutput& output, const Basis& basis, StoredSignal signal,
+                     bool nonNegativeForFormat);
 // The shard --shard K/N names; SettingError("shard") otherwise.
 Shard requireShard(const std::string& text);
 nlohmann::json planJson(const std::vector<PlannedEffect>& plan);

@@ -67,7 +67,7 @@ int bakeOverMpi(const CLI::App& app, BakeOptions options, const VolumeOutput& ou
     std::ostringstream silenced;
     std::ostream& log = root && !printing.quiet ? std::cerr : silenced;
     const std::unique_ptr<BakeJob> job = prepareBake(app, options, log);
-    printExportPlan(log, output, job->basis(), printing.nonNegativeForFormat);
+    printExportPlan(log, output, job->basis(), job->settings().projection.signal, printing.nonNegativeForFormat);
     log << fmt::format("mpi: {} ranks, each baking a shard of the bricks with {} threads ({} ranks on this machine)\n",
                        session.size(), options.request.threads, session.ranksOnThisMachine());
     MpiBakeReport report;

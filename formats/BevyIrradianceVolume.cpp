@@ -10,7 +10,6 @@
 #include <nlohmann/json.hpp>
 
 #include "basis/BasisRegistry.h"
-#include "formats/VolumeReconstruction.h"
 #include "common/Error.h"
 #include "formats/AtomicFile.h"
 #include "formats/CellCentredBox.h"
@@ -19,6 +18,7 @@
 #include "formats/VolumeHeader.h"
 #include "formats/VolumeLayout.h"
 #include "formats/VolumeMetadata.h"
+#include "formats/VolumeReconstruction.h"
 
 namespace baker {
 namespace {
@@ -45,11 +45,13 @@ std::size_t texelIndex(const ProbeGrid& g, int i, int j, int k, int face) {
 
 }  // namespace
 
-std::string bevyConversion(const Basis& basis) {
-  if (basis.family() == "ambient-cube") return "ambient-cube stored as it is (each face E(axis)/pi); exact";
-  return fmt::format("{} converted to Bevy's ambient cube by its irradiance at the six axes (each face E(axis)/pi): "
-                     "exact at the axes, and between them Bevy blends the six faces by n^2",
-                     basis.name());
+std::string bevyConversion(const Basis& basis, StoredSignal signal) {
+  if (basis.family() == "ambient-cube" && signal == StoredSignal::Irradiance)
+    return "ambient-cube stored as it is (each face E(axis)/pi); exact";
+  return fmt::format("{} {} converted to Bevy's ambient cube by its irradiance at the six axes{} (each face "
+                     "E(axis)/pi): exact at the axes, and between them Bevy blends the six faces by n^2",
+                     basis.name(), storedSignalName(signal),
+                     signal == StoredSignal::Radiance ? ", each function's diffuse response" : "");
 }
 
 namespace {
@@ -114,7 +116,7 @@ EngineExport writeBevyIrradianceVolume(const Volume& volume, const Basis& basis,
   requireFiniteVolume(volume);
   EngineExport report;
   report.engine = "bevy";
-  report.conversion = bevyConversion(basis);
+  report.conversion = bevyConversion(basis, storedSignalOf(volume.settings));
   const Ktx2Texture3D texture = textureOf(volume, basis, report);
   if (std::max({texture.width, texture.height, texture.depth}) > std::uint32_t(kCommon3dTextureLimit))
     report.warnings.push_back(fmt::format("the texture is {} × {} × {}: Bevy (wgpu's default limits) takes 3D textures "

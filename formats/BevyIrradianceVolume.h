@@ -2,6 +2,7 @@
 #include <string>
 
 #include "basis/Basis.h"
+#include "basis/StoredSignal.h"
 #include "formats/EngineExport.h"
 #include "volume/Volume.h"
 
@@ -21,7 +22,7 @@ namespace baker {
 EngineExport writeBevyIrradianceVolume(const Volume& volume, const Basis& basis, const std::string& directory);
 
 // How `basis` becomes Bevy's ambient cube, in one sentence (the bake states it in its plan).
-std::string bevyConversion(const Basis& basis);
+std::string bevyConversion(const Basis& basis, StoredSignal signal);
 
 // Reads such a directory (or its .ktx2) back as an ambient-cube volume: what Bevy shades with.
 // InputError naming the file and field.

@@ -106,11 +106,14 @@ std::string threeJsRefusal(const Basis& basis) {
   return "three.js's LightProbeGrid holds spherical harmonics up to L2, so it takes sh-l0, sh-l1 and sh-l2";
 }
 
-std::string threeJsConversion(const Basis& basis) {
+std::string threeJsConversion(const Basis& basis, StoredSignal signal) {
+  const char* lacking = shOrderOf(basis) < 2 ? ", the bands the basis lacks zero" : "";
+  if (signal == StoredSignal::Radiance)
+    return fmt::format("{} radiance stored as three.js's radiance SH L2 as it is{}; exact", basis.name(), lacking);
   return fmt::format(
       "{} irradiance to three.js's radiance SH L2: each band divided by its clamped-cosine factor (pi, 2pi/3, "
       "pi/4){}; exact",
-      basis.name(), shOrderOf(basis) < 2 ? ", the bands the basis lacks zero" : "");
+      basis.name(), lacking);
 }
 
 EngineExport writeThreeJsProbeGrid(const Volume& volume, const Basis& basis, const std::string& directory) {
@@ -119,7 +122,7 @@ EngineExport writeThreeJsProbeGrid(const Volume& volume, const Basis& basis, con
     throw InputError(fmt::format("{}: {} cannot be written exactly: {}", directory, basis.name(), refusal));
   EngineExport report;
   report.engine = "threejs";
-  report.conversion = threeJsConversion(basis);
+  report.conversion = threeJsConversion(basis, storedSignalOf(volume.settings));
   const ProbeGrid& g = volume.grid;
   const std::vector<bool> stored = storedBricks(volume);
   std::vector<double> radiance(std::size_t(g.probeCount()) * kValuesPerProbe, 0.0);

@@ -2,6 +2,7 @@
 #include <string>
 
 #include "basis/Basis.h"
+#include "basis/StoredSignal.h"
 #include "formats/EngineExport.h"
 #include "volume/Volume.h"
 
@@ -23,7 +24,7 @@ EngineExport writeThreeJsProbeGrid(const Volume& volume, const Basis& basis, con
 std::string threeJsRefusal(const Basis& basis);
 
 // How `basis` becomes three.js's SH, in one sentence (the bake states it in its plan).
-std::string threeJsConversion(const Basis& basis);
+std::string threeJsConversion(const Basis& basis, StoredSignal signal);
 
 // Reads such a directory (or its light_probe_grid.json) back as an sh-l2 irradiance volume:
 // what three.js will shade with. InputError naming the file and field.

@@ -13,21 +13,35 @@ VolumeReconstruction::VolumeReconstruction(const Volume& volume)
 VolumeReconstruction::VolumeReconstruction(std::unique_ptr<Basis> basis, StoredSignal signal)
     : basis_(std::move(basis)), signal_(signal) {
   if (signal_ != StoredSignal::Radiance) return;
-  for (int c = 0; c < 3; ++c) {
-    if (c > 0 && &basis_->functions(c) == &basis_->functions(c - 1))
-      responses_.push_back(responses_.back());
-    else
-      responses_.push_back(std::make_shared<const DiffuseResponse>(basis_->functions(c), basis_->name()));
-  }
+  for (int c = 0; c < 3; ++c) responses_.push_back(diffuseResponseOf(*basis_, c));
 }
 
+namespace {
+
+// Readers ask for the same few normals at probe after probe (the six axes, the comparison's 26):
+// each thread keeps the responses it evaluated last, so a lookup is a dot product.
+const std::vector<double>& responseAt(const DiffuseResponse& response, const Eigen::Vector3d& normal) {
+  struct Entry {
+    const DiffuseResponse* response;
+    Eigen::Vector3d normal;
+    std::vector<double> values;
+  };
+  constexpr std::size_t kKept = 64;
+  thread_local std::vector<Entry> kept;
+  for (const Entry& e : kept)
+    if (e.response == &response && e.normal == normal) return e.values;
+  if (kept.size() == kKept) kept.erase(kept.begin());
+  kept.push_back({&response, normal, std::vector<double>(std::size_t(response.count()))});
+  response.evaluate(normal, kept.back().values.data());
+  return kept.back().values;
+}
+
+}  // namespace
+
 double VolumeReconstruction::diffuse(int channel, const float* coefficients, const Eigen::Vector3d& normal) const {
-  const DiffuseResponse& response = *responses_[std::size_t(channel)];
-  thread_local std::vector<double> k;
-  k.resize(std::size_t(response.count()));
-  response.evaluate(normal, k.data());
+  const std::vector<double>& k = responseAt(*responses_[std::size_t(channel)], normal);
   double sum = 0.0;
-  for (int i = 0; i < response.count(); ++i) sum += k[std::size_t(i)] * double(coefficients[i]);
+  for (std::size_t i = 0; i < k.size(); ++i) sum += k[i] * double(coefficients[i]);
   return sum;
 }
 

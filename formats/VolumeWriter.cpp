@@ -94,10 +94,10 @@ void requireWritable(const VolumeOutput& output, const Basis& basis) {
                                             basis.name(), volumeFormatName(output.format), refusal));
 }
 
-std::string volumeConversion(const VolumeOutput& output, const Basis& basis) {
+std::string volumeConversion(const VolumeOutput& output, const Basis& basis, StoredSignal signal) {
   switch (output.format) {
-    case VolumeFormat::Bevy: return bevyConversion(basis);
-    case VolumeFormat::ThreeJs: return threeJsConversion(basis);
+    case VolumeFormat::Bevy: return bevyConversion(basis, signal);
+    case VolumeFormat::ThreeJs: return threeJsConversion(basis, signal);
     default: return "";
   }
 }

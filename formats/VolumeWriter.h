@@ -2,6 +2,7 @@
 #include <string>
 
 #include "basis/Basis.h"
+#include "basis/StoredSignal.h"
 #include "formats/EngineExport.h"
 #include "formats/ExrSlices.h"
 #include "volume/AdaptiveVolume.h"
@@ -43,7 +44,7 @@ void requireWritable(const VolumeOutput& output, const Basis& basis);
 
 // How the output's format will hold `basis`, in one sentence; "" for baker's own formats, which
 // store it as it is.
-std::string volumeConversion(const VolumeOutput& output, const Basis& basis);
+std::string volumeConversion(const VolumeOutput& output, const Basis& basis, StoredSignal signal);
 
 // Writes the volume; for an engine's format, returns what the conversion did.
 EngineExport writeVolume(const Volume& volume, const Basis& basis, const VolumeOutput& output);

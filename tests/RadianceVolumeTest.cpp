@@ -14,6 +14,7 @@
 #include "basis/GramOperators.h"
 #include "formats/VolumeReader.h"
 #include "formats/VolumeReconstruction.h"
+#include "formats/VolumeWriter.h"
 #include "scene/RayTracer.h"
 #include "tests/BakerProcess.h"
 #include "tests/TestData.h"
@@ -145,29 +146,35 @@ TEST(RadianceVolume, SphericalGaussiansFitAConstantSkyCloselyInIrradiance) {
 }
 
 // A directional light is a delta: its radiance coefficients are its exact projection
-// G⁻¹·f(ω)·E, with no SH truncation between.
+// G⁻¹·f(ω)·E in every channel, with no SH truncation between, also for a basis whose channels use
+// different functions (ad-ycocg: Y in one set, Co and Cg in another, moments stacked).
 TEST(RadianceVolume, APunctualLightIsProjectedExactly) {
   Scene scene;
   PunctualLight sun;
   sun.type = PunctualLight::Type::Directional;
   sun.intensity = 3.0f;
+  sun.color = Eigen::Vector3f(1.0f, 0.6f, 0.2f);
   sun.direction = Eigen::Vector3f(0.3f, -1.0f, 0.2f).normalized();
   scene.lights.push_back(sun);
   const RayTracer tracer(scene);
-  for (const char* name : {"ad-srbf", "sg-12", "sh-l2"}) {
+  for (const char* name : {"ad-srbf", "sg-12", "sh-l2", "ad-ycocg"}) {
     const auto basis = makeBasis(name);
     BakeSettings settings;
     settings.rays = 64;
     settings.transport.bounces = 0;
     settings.projection.signal = StoredSignal::Radiance;
     const test::BakedProbe probe = test::bakeProbe(scene, tracer, *basis, settings, Eigen::Vector3f::Zero());
-    const SphericalFunctions& f = basis->functions(0);
-    Eigen::VectorXd values(f.count());
-    f.evaluate(-sun.direction.cast<double>(), values.data());
-    const Eigen::VectorXd expected = GramOperators(f, name).gramInverse() * values * 3.0;
-    for (int i = 0; i < f.count(); ++i)
-      EXPECT_NEAR(probe.coefficients[std::size_t(i)], expected[i], 1e-5 * expected.cwiseAbs().maxCoeff())
-          << name << " coefficient " << i;
+    const Eigen::Vector3f e = toColorSpace(basis->colorSpace(), sun.color * sun.intensity);
+    for (int c = 0; c < 3; ++c) {
+      const SphericalFunctions& f = basis->functions(c);
+      Eigen::VectorXd values(f.count());
+      f.evaluate(-sun.direction.cast<double>(), values.data());
+      const Eigen::VectorXd expected = GramOperators(f, name).gramInverse() * values * double(e[c]);
+      const float* got = probe.coefficients.data() + basis->coefficientOffset(c);
+      for (int i = 0; i < f.count(); ++i)
+        EXPECT_NEAR(got[i], expected[i], 1e-5 * expected.cwiseAbs().maxCoeff() + 1e-7)
+            << name << " channel " << c << " coefficient " << i;
+    }
   }
 }
 
@@ -225,6 +232,10 @@ TEST(RadianceVolume, EngineExportsOfARadianceBakeHoldItsIrradiance) {
   const VolumeReconstruction sourceReading(source);
   for (const char* format : {"threejs", "bevy"}) {
     const Volume exported = readVolume(dir + "/room_" + format);
+    const std::string conversion = volumeConversion({"x", std::string(format) == "bevy" ? VolumeFormat::Bevy
+                                                                                        : VolumeFormat::ThreeJs},
+                                                    *makeBasis("sh-l2"), StoredSignal::Radiance);
+    EXPECT_NE(conversion.find("sh-l2 radiance"), std::string::npos) << conversion;
     EXPECT_EQ(exported.settings.at("signal"), "irradiance") << format;
     EXPECT_EQ(exported.settings.at("source_signal"), "radiance") << format;
     const VolumeReconstruction reading(exported);
@@ -250,6 +261,11 @@ TEST(RadianceVolume, BadRequestsAreRefusedNamingTheFlag) {
       test::runBaker(dir, {scene, "--signal", "radiance", "--window", "2", "--out", "x.vdb"});
   EXPECT_EQ(window.exitCode, 2);
   EXPECT_NE(window.err.find("--window"), std::string::npos) << window.err;
+  // Lobes this sharp have no diffuse response by SH order 64: refused before tracing, not when read.
+  const test::ProcessResult sharp = test::runBaker(
+      dir, {scene, "--basis", "sg-12", "--sg-sharpness", "300", "--signal", "radiance", "--out", "x.vdb"});
+  EXPECT_EQ(sharp.exitCode, 2);
+  EXPECT_NE(sharp.err.find("diffuse response"), std::string::npos) << sharp.err;
   EXPECT_FALSE(std::filesystem::exists(dir + "/x.vdb"));
 }
 
