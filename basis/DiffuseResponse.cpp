@@ -70,7 +70,7 @@ void DiffuseResponse::evaluate(const Eigen::Vector3d& normal, double* response) 
 
 std::shared_ptr<const DiffuseResponse> diffuseResponseOf(const Basis& basis, int channel) {
   int first = channel;
-  while (first > 0 && &basis.functions(first - 1) == &basis.functions(channel)) --first;
+  while (first > 0 && &basis.functions(first - 1) == &basis.functions(channel)) first -= 1;
   std::string key = fmt::format("{}/{}", basis.name(), first);
   for (const auto& [name, value] : basis.parameters()) key += fmt::format("/{}={:.17g}", name, value);
   static std::mutex mutex;
