@@ -139,7 +139,6 @@ ProbeBaker::ProbeBaker(const Scene& scene, const RayTracer& tracer, const Basis&
     for (const Eigen::Vector3d& v : sets.back().directions) d.push_back(v.cast<float>());
     directions_.push_back(std::move(d));
   }
-  std::vector<const SphericalFunctions*> groupFunctions;
   for (int c = 0; c < 3; ++c) {
     if (c > 0 && &basis.functions(c) == &basis.functions(c - 1)) {
       ++groups_.back().channelCount;
@@ -150,9 +149,7 @@ ProbeBaker::ProbeBaker(const Scene& scene, const RayTracer& tracer, const Basis&
     group.channelCount = 1;
     group.functions = basis.functions(c).count();
     groups_.push_back(std::move(group));
-    groupFunctions.push_back(&basis.functions(c));
   }
-  ownFunctions_ = StackedFunctions(groupFunctions);
   if (settings.projection.signal == StoredSignal::Radiance)
     buildRadianceOperators(sets);
   else
@@ -205,6 +202,9 @@ void ProbeBaker::fitRoundsByLeastSquares(const Eigen::MatrixXd& sampledGram, Eig
 }
 
 void ProbeBaker::buildRadianceOperators(const std::vector<DirectionSet>& sets) {
+  std::vector<const SphericalFunctions*> groupFunctions;
+  for (const ChannelGroup& group : groups_) groupFunctions.push_back(&basis_.functions(group.firstChannel));
+  ownFunctions_ = StackedFunctions(groupFunctions);
   punctualExpansion_ = &ownFunctions_;
   directExpansion_ = &ownFunctions_;
   for (std::size_t g = 0; g < groups_.size(); ++g) {
