@@ -12,6 +12,7 @@
 #include "bake/BakeJob.h"
 #include "bake/ProbeConvergence.h"
 #include "basis/BasisRegistry.h"
+#include "basis/StoredSignal.h"
 #include "cli/BakeOptions.h"
 #include "cli/CommandLine.h"
 #include "cli/MpiBakeCommand.h"
@@ -96,6 +97,7 @@ nlohmann::json bakeJson(const BakeReport& r) {
       {"output", r.output.path},
       {"format", volumeFormatName(r.output.format)},
       {"basis", job.basis().name()},
+      {"signal", storedSignalName(job.settings().projection.signal)},
       {"grid", gridJson(job)},
       {"probes", stats.probes},
       {"probe_states", {{"valid", stats.validProbes}, {"relocated", stats.relocatedProbes},
@@ -115,7 +117,9 @@ nlohmann::json bakeJson(const BakeReport& r) {
       {"rays", rayCountsJson(stats.rays)},
       {"rays_traced", stats.rays.total()},
       {"gram_condition_number", stats.conditionNumber},
-      {"sample_fit_sh_order", stats.shOrder},
+      // Radiance samples are fitted in the basis itself, through no SH expansion.
+      {"sample_fit_sh_order", job.settings().projection.signal == StoredSignal::Radiance ? nlohmann::json()
+                                                                                        : nlohmann::json(stats.shOrder)},
       {"seconds", {{"load", job.loadSeconds()}, {"bvh", job.bvhSeconds()}, {"operators", stats.operatorSeconds},
                    {"trace_and_project", stats.traceSeconds}, {"bake", r.bakeSeconds}, {"write", r.writeSeconds},
                    {"total", r.totalSeconds}}},

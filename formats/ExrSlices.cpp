@@ -64,7 +64,7 @@ nlohmann::json manifestOf(const Volume& v, const Basis& basis, ExrPrecision prec
           {"spacing", g.spacing},
           {"coefficients_per_probe", v.coefficientsPerProbe},
           {"visibility_per_probe", v.visibilityPerProbe},
-          {"probe_states", !v.states.empty()},
+          {"probe_states", v.hasProbeStates()},
           {"precision", precision == ExrPrecision::Half ? "half" : "float"},
           {"coefficient_scale", scale},
           {"channels", channels},
@@ -112,7 +112,7 @@ bool isExrSliceDirectory(const std::string& path) { return directoryHolds(path, 
 void writeSliceSet(const Volume& volume, const Basis& basis, const std::string& directory, ExrPrecision precision,
                    const BrickAtlas* atlas, const nlohmann::json& extra) {
   requireFiniteVolume(volume);
-  const std::vector<VolumeGrid> grids = volumeGrids(basis, volume.visibilityPerProbe, !volume.states.empty());
+  const std::vector<VolumeGrid> grids = volumeGrids(basis, volume.visibilityPerProbe, volume.hasProbeStates());
   const double scale = coefficientScale(volume, precision);
   const PixelType storage = precision == ExrPrecision::Half ? PixelType::Half : PixelType::Float;
   // An atlas holds exactly its bricks; the grid's own layout the bricks a file keeps.

@@ -36,7 +36,7 @@ json icosahedronData(bool withTangentFrames) {
 
 }  // namespace
 
-json reconstructionData(const Basis& basis) {
+json reconstructionData(const Basis& basis, StoredSignal signal) {
   std::vector<const SphericalFunctions*> distinct;
   json sets = json::array(), channels = json::array();
   for (int c = 0; c < 3; ++c) {
@@ -67,8 +67,17 @@ json reconstructionData(const Basis& basis) {
     data["to_rgb"] = rows;
   }
   data["channels"] = channels;
-  data["value"] = "channel c at unit normal n: sum over i of coefficients[offset_c + i] f_i(n), f = function_sets[functions_c]";
-  data["visibility"] = "sum over i of visibility[i] f_i(n), f = channel 0's function set";
+  data["signal"] = storedSignalName(signal);
+  if (signal == StoredSignal::Radiance) {
+    data["value"] =
+        "channel c: radiance L(w) = sum over i of coefficients[offset_c + i] f_i(w), f = function_sets[functions_c]; "
+        "irradiance E(n) = sum over i of coefficients[offset_c + i] K_i(n), K_i(n) = integral of f_i(w) max(0, n.w) dw";
+    data["visibility"] = "V(w) = sum over i of visibility[i] f_i(w), f = channel 0's function set";
+  } else {
+    data["value"] =
+        "channel c at unit normal n: sum over i of coefficients[offset_c + i] f_i(n), f = function_sets[functions_c]";
+    data["visibility"] = "sum over i of visibility[i] f_i(n), f = channel 0's function set";
+  }
   data["function_sets"] = sets;
   if (data["family"] == "ambient-dice") {
     bool bezier = false;

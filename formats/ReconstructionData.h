@@ -2,6 +2,7 @@
 #include <nlohmann/json.hpp>
 
 #include "basis/Basis.h"
+#include "basis/StoredSignal.h"
 
 namespace baker {
 
@@ -10,6 +11,8 @@ namespace baker {
 // offset and function set, and each function set's constants (SH order and convention,
 // icosahedron vertices and tangent frames, lobe axes and sharpness, ...). Files store its
 // dump() under "baker.reconstruction"; docs/DECODERS.md gives the formulas it refers to.
-nlohmann::json reconstructionData(const Basis& basis);
+// "signal" says what the coefficients hold, so that a decoder which evaluates the stored
+// function as irradiance can refuse radiance coefficients instead of misreading them.
+nlohmann::json reconstructionData(const Basis& basis, StoredSignal signal = StoredSignal::Irradiance);
 
 }  // namespace baker

@@ -169,7 +169,7 @@ std::vector<bool> heldBricks(const Volume& level) {
 }  // namespace
 
 void writeVdb(const Volume& volume, const Basis& basis, const std::string& path) {
-  const bool hasProbeStates = !volume.states.empty();
+  const bool hasProbeStates = volume.hasProbeStates();
   writeLevels({{&volume, "", storedBricks(volume)}}, basis, fileMetadata(volume, basis, hasProbeStates), hasProbeStates,
               path);
 }

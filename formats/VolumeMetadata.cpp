@@ -27,7 +27,7 @@ const char* kindName(VolumeGrid::Kind kind) {
 }  // namespace
 
 std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume& volume, const Basis& basis) {
-  return describingMetadata(volume, basis, !volume.states.empty());
+  return describingMetadata(volume, basis, volume.hasProbeStates());
 }
 
 std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume& volume, const Basis& basis,
@@ -57,7 +57,7 @@ std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume
                   "where a ray escapes the scene: 1 under open sky"},
       {"baker.color_space", colorSpaceName(basis.colorSpace())},
       {"baker.layout", layout.dump()},
-      {"baker.reconstruction", reconstructionData(basis).dump()},
+      {"baker.reconstruction", reconstructionData(basis, signal).dump()},
   };
   for (const auto& [key, value] : volume.settings) meta.push_back({"baker.setting." + key, value});
   if (volume.shard) {

@@ -4,9 +4,8 @@
 #include <cstdio>
 #include <exception>
 
-#include "basis/BasisRegistry.h"
 #include "formats/VolumeReader.h"
-#include "formats/VolumeSampler.h"
+#include "formats/VolumeReconstruction.h"
 
 int main(int argc, char** argv) {
   if (argc != 2) {
@@ -15,10 +14,12 @@ int main(int argc, char** argv) {
   }
   try {
     const baker::Volume volume = baker::readVolume(argv[1]);
-    const auto basis = baker::makeBasis(volume.basisName);
-    const Eigen::Vector3f e = basis->reconstruct(volume.probe(0), Eigen::Vector3d::UnitY());
-    std::printf("%s: %lld probes in %s; probe 0 E(+Y) = %g %g %g\n", argv[1], (long long)volume.grid.probeCount(),
-                volume.basisName.c_str(), e.x(), e.y(), e.z());
+    // Whatever the volume stores (irradiance, or radiance whose diffuse response gives E).
+    const baker::VolumeReconstruction reading(volume);
+    const Eigen::Vector3f e = reading.irradiance(volume.probe(0), Eigen::Vector3d::UnitY());
+    std::printf("%s: %lld probes in %s (%s); probe 0 E(+Y) = %g %g %g\n", argv[1],
+                (long long)volume.grid.probeCount(), volume.basisName.c_str(), baker::storedSignalName(reading.signal()),
+                e.x(), e.y(), e.z());
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "importer_check: %s\n", e.what());

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <openvdb/openvdb.h>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,8 @@
 #include "basis/DiffuseResponse.h"
 #include "basis/DirectionSet.h"
 #include "basis/GramOperators.h"
+#include "common/Error.h"
+#include "formats/ReconstructionData.h"
 #include "formats/VolumeReader.h"
 #include "formats/VolumeReconstruction.h"
 #include "formats/VolumeWriter.h"
@@ -192,7 +195,15 @@ TEST(RadianceVolume, TheFileRecordsItsSignalAndSampleReconstructsIrradiance) {
   const test::ProcessResult inspect = test::runBaker(dir, {"inspect", "radiance.vdb", "--json"});
   ASSERT_EQ(inspect.exitCode, 0) << inspect.err;
   EXPECT_EQ(nlohmann::json::parse(inspect.out)["signal"], "radiance");
-  EXPECT_EQ(readVolume(dir + "/radiance.vdb").settings.at("signal"), "radiance");
+  const Volume radiance = readVolume(dir + "/radiance.vdb");
+  EXPECT_EQ(radiance.settings.at("signal"), "radiance");
+  // A decoder that reads only "baker.reconstruction" learns the signal there too.
+  openvdb::initialize();
+  openvdb::io::File file(dir + "/radiance.vdb");
+  file.open();
+  const std::string reconstruction = file.getMetadata()->metaValue<std::string>("baker.reconstruction");
+  file.close();
+  EXPECT_EQ(nlohmann::json::parse(reconstruction)["signal"], "radiance");
   Eigen::Vector3d e[2];
   int k = 0;
   for (const char* file : {"radiance.vdb", "irradiance.vdb"}) {
@@ -212,6 +223,17 @@ TEST(RadianceVolume, TheFileRecordsItsSignalAndSampleReconstructsIrradiance) {
   EXPECT_EQ(view.exitCode, 2);
   EXPECT_NE(view.err.find("radiance.vdb"), std::string::npos) << view.err;
   EXPECT_FALSE(std::filesystem::exists(dir + "/page"));
+}
+
+// What a volume holds is read from its settings: none recorded (volumes older than radiance) is
+// irradiance; a value this version does not know is refused, not read as irradiance.
+TEST(StoredSignal, MissingIsIrradianceAndUnknownIsRefused) {
+  EXPECT_EQ(storedSignalOf({}), StoredSignal::Irradiance);
+  EXPECT_EQ(storedSignalOf({{"signal", "radiance"}}), StoredSignal::Radiance);
+  EXPECT_EQ(storedSignalOf({{"signal", "irradiance"}}), StoredSignal::Irradiance);
+  EXPECT_THROW(storedSignalOf({{"signal", "specular"}}), InputError);
+  EXPECT_THROW(parseStoredSignal("Radiance"), SettingError);
+  EXPECT_EQ(reconstructionData(*makeBasis("sh-l2"))["signal"], "irradiance");
 }
 
 // Engine exports hold irradiance, whatever the bake stored: three.js's SH radiance is the radiance

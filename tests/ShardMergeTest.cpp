@@ -192,6 +192,25 @@ TEST(Shards, APartReadAsItsOwnBricksHoldsItsValuesAndRefusesAnotherShardsProbe) 
   }
 }
 
+// More shards than bricks: a shard without a brick still writes a part, and the merge takes it.
+TEST(Shards, AShardWithoutBricksIsMerged) {
+  const std::string dir = test::makeTempDir("shard_without_bricks");
+  const std::vector<std::string> oneBrick = {scenePath(), "--spacing", "1", "--rays", "16", "--bounces", "0", "--quiet"};
+  const auto bake = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args = oneBrick;
+    args.insert(args.end(), extra.begin(), extra.end());
+    const auto r = runBaker(dir, args);
+    EXPECT_EQ(r.exitCode, 0) << r.err;
+  };
+  bake({"--out", "whole.vdb"});
+  bake({"--shard", "0/2", "--out", "part0.vdb"});
+  bake({"--shard", "1/2", "--out", "part1.vdb"});
+  ASSERT_EQ(readVolume(dir + "/part0.vdb", PartReading::OwnBricks).states.size(), 0u);
+  const auto m = runBaker(dir, {"merge", "merged.vdb", "part0.vdb", "part1.vdb"});
+  ASSERT_EQ(m.exitCode, 0) << m.err;
+  EXPECT_EQ(bytesOf(dir + "/merged.vdb"), bytesOf(dir + "/whole.vdb"));
+}
+
 class MergeRefuses : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
@@ -226,6 +245,20 @@ TEST_F(MergeRefuses, APartFromAnotherSetting) {
   const auto r = runBaker(dir_, bakeArgs({"--shard", "1/2", "--seed", "1", "--out", other}));
   ASSERT_EQ(r.exitCode, 0) << r.err;
   expectRefused({parts_[0], other}, other + ": baker.setting.seed is \"1\", but " + parts_[0] + " has \"0\"");
+}
+
+// Radiance and irradiance coefficients do not go into one grid (64 rays: a radiance fit needs
+// more rays than the basis has functions).
+TEST_F(MergeRefuses, APartOfAnotherSignal) {
+  std::string parts[2];
+  for (int k = 0; k < 2; ++k) {
+    parts[k] = dir_ + (k == 0 ? "/irradiance-0.vdb" : "/radiance-1.vdb");
+    const auto r = runBaker(dir_, {scenePath(), "--spacing", "0.3", "--rays", "64", "--bounces", "0", "--basis", "sh-l2",
+                                   "--signal", k == 0 ? "irradiance" : "radiance", "--shard", fmt::format("{}/2", k),
+                                   "--out", parts[k], "--quiet"});
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+  }
+  expectRefused({parts[0], parts[1]}, parts[1] + ": baker.setting.signal is \"radiance\", but " + parts[0] + " has \"irradiance\"");
 }
 
 TEST_F(MergeRefuses, APartFromAnotherScene) {

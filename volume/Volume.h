@@ -12,8 +12,9 @@
 
 namespace baker {
 
-// A baked irradiance volume: per probe, the basis coefficients of the irradiance E(n) it receives,
-// laid out as Basis describes (channel after channel), and of its sky visibility. Probe
+// A baked volume: per probe, the basis coefficients of the irradiance E(n) it receives or of the
+// incoming radiance L(ω) (its setting "signal", basis/StoredSignal.h), laid out as Basis
+// describes (channel after channel), and of its sky visibility. Probe
 // p = i + nx·(j + ny·k) has row rowOf(p) of every per-probe array: row p, unless the volume is a
 // shard's part as baked, which holds only its own bricks (ProbeRows).
 struct Volume {
@@ -22,7 +23,8 @@ struct Volume {
   std::string basisName;
   int coefficientsPerProbe = 0;
   std::vector<float> coefficients;
-  // Sky visibility V(n) = (1/π) ∫ V(ω) max(0, n·ω) dω in channel 0's functions: 1 under open sky.
+  // Sky visibility in channel 0's functions: V(n) = (1/π) ∫ V(ω) max(0, n·ω) dω, 1 under open
+  // sky, or for radiance V(ω) itself.
   int visibilityPerProbe = 0;
   std::vector<float> visibility;
   // Per probe: whether it was baked where the grid puts it, moved out of geometry by `offsets`
@@ -36,6 +38,9 @@ struct Volume {
   // filled until the parts are merged.
   std::optional<Shard> shard;
 
+  // Whether files keep per-probe states: for every bake that found them, and for every shard's
+  // part, even one whose shard holds no brick, since the merge reads them.
+  bool hasProbeStates() const { return !states.empty() || shard.has_value(); }
   std::int64_t rowOf(std::int64_t probe) const { return rows.row(grid, probe); }
   // The coefficients of a probe the volume holds.
   const float* probe(std::int64_t index) const { return coefficients.data() + rowOf(index) * coefficientsPerProbe; }

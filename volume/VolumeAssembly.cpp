@@ -100,7 +100,9 @@ VolumeAssembly::VolumeAssembly(const Volume& first, const std::string& firstName
 
 void VolumeAssembly::add(const Volume& part, const std::string& name) {
   requireSameBake(part, name, whole_, firstName_);
-  if (part.states.empty()) throw InputError(fmt::format("{}: has no probe_state grid; a shard's part has one", name));
+  // Each probe it holds has a state; a part whose shard has no brick holds none.
+  if (part.states.size() * std::size_t(part.coefficientsPerProbe) != part.coefficients.size())
+    throw InputError(fmt::format("{}: has no probe_state grid; a shard's part has one", name));
   const Shard shard = *part.shard;
   // A probe outside the part's own bricks would be a brick given twice, or a part of another
   // partition: its reader refused those, reading the part as its own bricks only.
