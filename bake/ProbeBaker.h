@@ -13,6 +13,7 @@
 #include "bake/Transport.h"
 #include "basis/Basis.h"
 #include "basis/DirectionSet.h"
+#include "basis/GgxLobe.h"
 #include "basis/GramOperators.h"
 #include "basis/StackedFunctions.h"
 #include "basis/StoredSignal.h"
@@ -56,6 +57,13 @@ struct ProbeSamples {
 // E(n) = Σ L(ω) max(0, n·ω) w over the probe's rays, plus E⊥ max(0, n·ω) of each punctual
 // light and of each direct-view sample: the irradiance the samples imply, before any basis.
 Eigen::Vector3f sampledIrradiance(const ProbeSamples& samples, const Eigen::Vector3f& normal);
+
+// The GGX-weighted mean radiance S the samples imply, before any basis (GgxLobe): the rays'
+// radiance weighted by w ρ(ω)(n·ω)⁺ over the sum of those weights, plus each punctual and
+// direct-view arrival weighted by ρ(ω)(n·ω)⁺ over the lobe's albedo A. The rays resolve the
+// lobe only where it is wider than their spacing; `rayCoverage` gets Σ w ρ(ω)(n·ω)⁺ / A over
+// the rays: near 1 when they do, 0 for the mirror (whose reference no set of rays holds).
+Eigen::Vector3f sampledSpecular(const ProbeSamples& samples, const GgxLobe& lobe, double* rayCoverage);
 
 // Bakes batches of probes (a brick) into basis coefficients. Each probe traces a lattice of
 // `rays` spherical Fibonacci directions, turned by one of a few rotations drawn from the seed:

@@ -1,5 +1,7 @@
 #include "basis/Basis.h"
 
+#include <fmt/format.h>
+
 #include <vector>
 
 namespace baker {
@@ -21,6 +23,12 @@ Eigen::Vector3f toColorSpace(ColorSpace space, const Eigen::Vector3f& c) {
 Eigen::Vector3f toRgb(ColorSpace space, const Eigen::Vector3f& c) {
   if (space == ColorSpace::Rgb) return c;
   return {c.x() + c.y() - c.z(), c.x() + c.z(), c.x() - c.y() - c.z()};
+}
+
+std::string Basis::identity() const {
+  std::string key = name();
+  for (const auto& [parameter, value] : parameters()) key += fmt::format("/{}={:.17g}", parameter, value);
+  return key;
 }
 
 int Basis::coefficientOffset(int channel) const {

@@ -36,6 +36,10 @@ class Basis {
   // override it to read only coefficientsPerLookup() values.
   virtual Eigen::Vector3f reconstruct(const float* coefficients, const Eigen::Vector3d& d) const;
 
+  // The name and the parameters() that tell this basis from another of the same name: a key
+  // for what is built once per basis.
+  std::string identity() const;
+
   int coefficientCount(int channel) const { return functions(channel).count(); }
   int coefficientOffset(int channel) const;
   int totalCoefficients() const { return coefficientOffset(3); }

@@ -71,8 +71,7 @@ void DiffuseResponse::evaluate(const Eigen::Vector3d& normal, double* response) 
 std::shared_ptr<const DiffuseResponse> diffuseResponseOf(const Basis& basis, int channel) {
   int first = channel;
   while (first > 0 && &basis.functions(first - 1) == &basis.functions(channel)) first -= 1;
-  std::string key = fmt::format("{}/{}", basis.name(), first);
-  for (const auto& [name, value] : basis.parameters()) key += fmt::format("/{}={:.17g}", name, value);
+  const std::string key = fmt::format("{}/{}", basis.identity(), first);
   static std::mutex mutex;
   static std::map<std::string, std::shared_ptr<const DiffuseResponse>> built;
   const std::lock_guard<std::mutex> lock(mutex);

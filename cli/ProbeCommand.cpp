@@ -3,13 +3,16 @@
 #include <fmt/format.h>
 
 #include <iostream>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "bake/BakeJob.h"
 #include "basis/BasisRegistry.h"
+#include "basis/GgxLobe.h"
 #include "cli/BakeOptions.h"
 #include "cli/CommandLine.h"
+#include "cli/SpecularFlags.h"
 #include "common/Error.h"
 #include "formats/VolumeReconstruction.h"
 #include "volume/ProbeState.h"
@@ -56,6 +59,23 @@ nlohmann::json probeJson(const VolumeReconstruction& reading, const BakedProbes&
           {"sky_visibility_by_normal", visibilityByNormal}};
 }
 
+// Specular for one normal and view from the basis and, as the reference, from the probe's own
+// samples; null when not asked for.
+nlohmann::json specularJson(const std::optional<SpecularRequest>& request, const Eigen::Vector3d& normal,
+                            const VolumeReconstruction& reading, const BakedProbes& baked, std::size_t i) {
+  if (!request) return nullptr;
+  const GgxLobe lobe(normal, request->view, request->roughness);
+  double coverage = 0.0;
+  const Eigen::Vector3f fromSamples = sampledSpecular(baked.samples[i], lobe, &coverage);
+  return {{"normal", vec(normal.cast<float>())},
+          {"view", vec(request->view.cast<float>())},
+          {"roughness", request->roughness},
+          {"value", vec(reading.specular(baked.probe(i), normal, request->view, request->roughness))},
+          {"from_samples", vec(fromSamples)},
+          {"ray_coverage", coverage},
+          {"albedo", lobe.albedo()}};
+}
+
 }  // namespace
 
 int runProbeCommand(int argc, char** argv) {
@@ -66,17 +86,32 @@ int runProbeCommand(int argc, char** argv) {
   addBakeOptions(app, options);
   app.add_option("--at", at, "probe position x,y,z in world units (repeatable)")->required()->allow_extra_args(false);
   app.add_flag("--json", json, "print the probes as JSON on stdout");
+  SpecularFlags specularFlags;
+  specularFlags.addTo(app);
+  std::string normalText;
+  app.add_option("--normal", normalText, "with --roughness and --view: the surface normal x,y,z; default: the view");
 
   return runGuarded("baker probe", app, argc, argv, [&]() {
     std::vector<Eigen::Vector3f> positions;
     for (const std::string& text : at) positions.push_back(parseTriple("--at", text).cast<float>());
+    const std::optional<SpecularRequest> specular = specularRequest(specularFlags);
+    if (!normalText.empty() && !specular) throw InputError("--normal goes with --roughness and --view");
+    Eigen::Vector3d normal = specular ? specular->view : Eigen::Vector3d::UnitY();
+    if (!normalText.empty()) normal = parseTriple("--normal", normalText);
+    if (!(normal.norm() > 0.0)) throw InputError("--normal must not be zero");
+    normal.normalize();
     const std::unique_ptr<BakeJob> job = prepareBake(app, options, std::cerr);
+    if (specular && job->settings().projection.signal != StoredSignal::Radiance)
+      throw InputError("--roughness and --view read specular from radiance: add --signal radiance");
     const Basis& basis = job->basis();
     const VolumeReconstruction reading(makeBasis(basis.name(), job->request().sgSharpness),
                                        job->settings().projection.signal);
     const BakedProbes baked = job->probesAt(positions);
     nlohmann::json probes = nlohmann::json::array();
-    for (std::size_t i = 0; i < positions.size(); ++i) probes.push_back(probeJson(reading, baked, positions[i], i));
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+      probes.push_back(probeJson(reading, baked, positions[i], i));
+      probes.back()["specular"] = specularJson(specular, normal, reading, baked, i);
+    }
 
     if (json) {
       const nlohmann::json j = {{"scene", job->request().scenePath},
@@ -106,6 +141,14 @@ int runProbeCommand(int argc, char** argv) {
         std::cout << fmt::format("  {:<6}  {:>10.5g} {:>10.5g} {:>10.5g}    {:>10.5g} {:>10.5g} {:>10.5g}    {:.4f}\n", name,
                                  b[0], b[1], b[2], s[0], s[1], s[2], p["sky_visibility_by_normal"][name].get<double>());
       }
+      if (!p["specular"].is_null())
+        std::cout << fmt::format("  specular S (roughness {}, normal ({}), view ({})): from the basis ({:.5g}), from "
+                                 "the samples ({:.5g}), the rays covering {:.3f} of the lobe\n",
+                                 specular->roughness, fmt::join(p["specular"]["normal"].get<std::vector<float>>(), ", "),
+                                 fmt::join(p["specular"]["view"].get<std::vector<float>>(), ", "),
+                                 fmt::join(p["specular"]["value"].get<std::vector<float>>(), ", "),
+                                 fmt::join(p["specular"]["from_samples"].get<std::vector<float>>(), ", "),
+                                 p["specular"]["ray_coverage"].get<double>());
       std::cout << fmt::format("  coefficients ({}): {}\n", basis.name(),
                                fmt::join(p["coefficients"].get<std::vector<float>>(), " "));
     }

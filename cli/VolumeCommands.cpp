@@ -5,9 +5,12 @@
 #include <filesystem>
 #include <iostream>
 #include <limits>
+#include <optional>
 #include <nlohmann/json.hpp>
 
+#include "basis/GgxLobe.h"
 #include "cli/CommandLine.h"
+#include "cli/SpecularFlags.h"
 #include "common/Error.h"
 #include "formats/VolumeLayout.h"
 #include "formats/VolumeReader.h"
@@ -63,6 +66,26 @@ nlohmann::json levelsJson(const AdaptiveVolume& volume, std::int64_t (&counts)[k
   return levels;
 }
 
+// The specular part of sample's answer (null when not asked for); InputError when the volume
+// holds irradiance.
+nlohmann::json specularJson(const std::optional<SpecularRequest>& request, const VolumeReconstruction& reading,
+                            const std::string& path, const float* coefficients, const Eigen::Vector3d& normal) {
+  if (!request) return nullptr;
+  if (reading.signal() != StoredSignal::Radiance)
+    throw InputError(fmt::format("{}: holds irradiance (setting signal), from which no specular can be read; bake "
+                                 "with --signal radiance",
+                                 path));
+  const Eigen::Vector3d& view = request->view;
+  const Eigen::Vector3f value = reading.specular(coefficients, normal, view, request->roughness);
+  const double cosView = GgxLobe(normal, view, request->roughness).cosView();  // as specular() reads it
+  const std::shared_ptr<const SpecularBlend> blend = reading.specularBlend();
+  return {{"roughness", request->roughness},
+          {"view", {view.x(), view.y(), view.z()}},
+          {"value", {value.x(), value.y(), value.z()}},
+          {"albedo", blend->albedo(request->roughness, cosView)},
+          {"diffuse_weight", blend->diffuseWeight(request->roughness, cosView)}};
+}
+
 }  // namespace
 
 int runSampleCommand(int argc, char** argv) {
@@ -72,12 +95,15 @@ int runSampleCommand(int argc, char** argv) {
   app.add_option("volume", path, "volume: .vdb, or a directory of EXR slices, a Bevy or a three.js export")->required();
   app.add_option("--at", at, "world position x,y,z")->required();
   app.add_option("--normal", normalText, "surface normal x,y,z (normalised here)")->required();
+  SpecularFlags specularFlags;
+  specularFlags.addTo(app);
   app.add_flag("--json", json, "print the result as JSON on stdout");
   return runGuarded("baker sample", app, argc, argv, [&]() {
     const Eigen::Vector3d position = parseTriple("--at", at);
     Eigen::Vector3d normal = parseTriple("--normal", normalText);
     if (!(normal.norm() > 0.0)) throw InputError("--normal must not be zero");
     normal.normalize();
+    const std::optional<SpecularRequest> specular = specularRequest(specularFlags);
     const AdaptiveVolume levels = readLevels(path);
     const VolumeReconstruction reading(levels.coarsest());
     // The finest level whose probes around the position are all held, as an engine picks it.
@@ -91,6 +117,7 @@ int runSampleCommand(int argc, char** argv) {
     const Eigen::Vector3f e = reading.irradiance(s.coefficients.data(), normal);
     const bool hasVisibility = volume.visibilityPerProbe > 0;
     const double sky = hasVisibility ? reading.skyVisibility(s.visibility.data(), normal) : 0.0;
+    const nlohmann::json glossy = specularJson(specular, reading, path, s.coefficients.data(), normal);
     if (json) {
       nlohmann::json j = {{"volume", path},
                           {"basis", reading.basis().name()},
@@ -103,6 +130,7 @@ int runSampleCommand(int argc, char** argv) {
                           {"irradiance", {e.x(), e.y(), e.z()}},
                           {"coefficients", s.coefficients}};
       j["sky_visibility"] = hasVisibility ? nlohmann::json(sky) : nlohmann::json(nullptr);
+      j["specular"] = glossy;
       std::cout << j.dump(2) << "\n";
     } else {
       std::cout << fmt::format("irradiance E = ({:.6g}, {:.6g}, {:.6g}) at ({}, {}, {}) for normal ({:.4f}, {:.4f}, "
@@ -113,6 +141,11 @@ int runSampleCommand(int argc, char** argv) {
         std::cout << fmt::format("level {} of {} (spacing {:.4g} m)\n", choice.level, levels.levels.size(),
                                  volume.grid.spacing);
       if (hasVisibility) std::cout << fmt::format("sky visibility {:.4f}\n", sky);
+      if (!glossy.is_null())
+        std::cout << fmt::format("specular S = ({:.6g}) at roughness {} (GGX mean radiance; albedo {:.4f}, diffuse "
+                                 "weight {:.4f})\n",
+                                 fmt::join(glossy["value"].get<std::vector<double>>(), ", "), specular->roughness,
+                                 glossy["albedo"].get<double>(), glossy["diffuse_weight"].get<double>());
     }
     return 0;
   });

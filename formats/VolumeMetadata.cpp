@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <nlohmann/json.hpp>
 
+#include "basis/SpecularBlend.h"
 #include "basis/StoredSignal.h"
 #include "common/Error.h"
 
@@ -59,6 +60,8 @@ std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume
       {"baker.layout", layout.dump()},
       {"baker.reconstruction", reconstructionData(basis, signal).dump()},
   };
+  // How glossy specular is read from radiance, for decoders to read it the same way.
+  if (radiance) meta.push_back({"baker.specular", specularBlendOf(basis)->describe().dump()});
   for (const auto& [key, value] : volume.settings) meta.push_back({"baker.setting." + key, value});
   if (volume.shard) {
     meta.push_back({"baker.shard", shardName(*volume.shard)});

@@ -1,7 +1,9 @@
 #include "formats/VolumeReconstruction.h"
 
+#include <cmath>
 #include <stdexcept>
 
+#include "basis/GgxLobe.h"
 #include "formats/VolumeReader.h"
 #include "formats/VolumeSampler.h"
 
@@ -60,6 +62,13 @@ double VolumeReconstruction::skyVisibility(const float* visibility, const Eigen:
 Eigen::Vector3f VolumeReconstruction::radiance(const float* coefficients, const Eigen::Vector3d& direction) const {
   if (signal_ != StoredSignal::Radiance) throw std::logic_error("an irradiance volume holds no radiance");
   return basis_->reconstruct(coefficients, direction);
+}
+
+Eigen::Vector3f VolumeReconstruction::specular(const float* coefficients, const Eigen::Vector3d& normal,
+                                               const Eigen::Vector3d& view, double roughness) const {
+  const GgxLobe lobe(normal, view, roughness);  // the reflection of a view at or below the surface is kept above it
+  const float w = float(specularBlend()->diffuseWeight(roughness, lobe.cosView()));
+  return (1.0f - w) * radiance(coefficients, lobe.reflection()) + w * irradiance(coefficients, normal) / float(M_PI);
 }
 
 }  // namespace baker

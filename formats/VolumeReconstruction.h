@@ -5,6 +5,7 @@
 
 #include "basis/Basis.h"
 #include "basis/DiffuseResponse.h"
+#include "basis/SpecularBlend.h"
 #include "basis/StoredSignal.h"
 #include "volume/Volume.h"
 
@@ -29,6 +30,14 @@ class VolumeReconstruction {
   double skyVisibility(const float* visibility, const Eigen::Vector3d& normal) const;
   // L(ω) in RGB: only a radiance volume holds it (`signal()` says; a logic error otherwise).
   Eigen::Vector3f radiance(const float* coefficients, const Eigen::Vector3d& direction) const;
+  // The GGX-weighted mean radiance S in RGB for a unit normal, a unit view (towards the eye) and
+  // a roughness in [0, 1], blended from L(r) and E(n)/π (basis/SpecularBlend.h); radiance
+  // volumes only, like radiance().
+  Eigen::Vector3f specular(const float* coefficients, const Eigen::Vector3d& normal, const Eigen::Vector3d& view,
+                           double roughness) const;
+  // The blend this volume's basis reads specular with; its albedo A is what S is multiplied by
+  // for the radiance a GGX surface with F0 = 1 reflects. Fitted on the first call per process.
+  std::shared_ptr<const SpecularBlend> specularBlend() const { return specularBlendOf(*basis_); }
 
  private:
   // Σ c_i K_i(n) over channel c's functions.
