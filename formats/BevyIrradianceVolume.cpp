@@ -76,7 +76,7 @@ nlohmann::json sidecarOf(const Volume& v, const Basis& basis, const EngineExport
           {"metadata", metadata}};
 }
 
-Ktx2Texture3D textureOf(const Volume& v, const Basis& basis, EngineExport& report) {
+Ktx2Texture3D textureOf(const Volume& v, EngineExport& report) {
   const ProbeGrid& g = v.grid;
   Ktx2Texture3D t;
   t.vkFormat = kVkFormatE5B9G9R9;
@@ -117,7 +117,7 @@ EngineExport writeBevyIrradianceVolume(const Volume& volume, const Basis& basis,
   EngineExport report;
   report.engine = "bevy";
   report.conversion = bevyConversion(basis, storedSignalOf(volume.settings));
-  const Ktx2Texture3D texture = textureOf(volume, basis, report);
+  const Ktx2Texture3D texture = textureOf(volume, report);
   if (std::max({texture.width, texture.height, texture.depth}) > std::uint32_t(kCommon3dTextureLimit))
     report.warnings.push_back(fmt::format("the texture is {} × {} × {}: Bevy (wgpu's default limits) takes 3D textures "
                                           "of at most {} texels a side; use a larger spacing or split the volume",
