@@ -99,8 +99,9 @@ Eigen::Vector3f sampledIrradiance(const ProbeSamples& s, const Eigen::Vector3f& 
   return e.cast<float>();
 }
 
-Eigen::Vector3f sampledSpecular(const ProbeSamples& s, const GgxLobe& lobe, double* rayCoverage) {
-  const double albedo = lobe.albedo();
+SampledSpecular sampledSpecular(const ProbeSamples& s, const GgxLobe& lobe) {
+  SampledSpecular result;
+  const double albedo = result.albedo = lobe.albedo();
   Eigen::Vector3d rays = Eigen::Vector3d::Zero(), deltas = Eigen::Vector3d::Zero();
   double covered = 0.0;
   for (std::size_t r = 0; r < s.radiance.size(); ++r) {
@@ -111,11 +112,12 @@ Eigen::Vector3f sampledSpecular(const ProbeSamples& s, const GgxLobe& lobe, doub
   for (const auto* arrivals : {&s.punctual, &s.direct})
     for (const PunctualAtProbe::Arrival& a : *arrivals)
       deltas += a.irradiance.cast<double>() * lobe.cosineWeighted(a.direction.cast<double>());
-  *rayCoverage = covered / albedo;
+  result.rayCoverage = covered / albedo;
   // The rays' share over their own sum of weights, so that their quadrature error cancels where
   // the radiance is smooth; the deltas' share is exact.
   const Eigen::Vector3d fromRays = covered > 0.0 ? Eigen::Vector3d(rays / covered) : Eigen::Vector3d::Zero();
-  return (fromRays + deltas / albedo).cast<float>();
+  result.value = (fromRays + deltas / albedo).cast<float>();
+  return result;
 }
 
 // Consecutive colour channels that share one function set are projected together: for an RGB

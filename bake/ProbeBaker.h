@@ -61,9 +61,14 @@ Eigen::Vector3f sampledIrradiance(const ProbeSamples& samples, const Eigen::Vect
 // The GGX-weighted mean radiance S the samples imply, before any basis (GgxLobe): the rays'
 // radiance weighted by w ρ(ω)(n·ω)⁺ over the sum of those weights, plus each punctual and
 // direct-view arrival weighted by ρ(ω)(n·ω)⁺ over the lobe's albedo A. The rays resolve the
-// lobe only where it is wider than their spacing; `rayCoverage` gets Σ w ρ(ω)(n·ω)⁺ / A over
-// the rays: near 1 when they do, 0 for the mirror (whose reference no set of rays holds).
-Eigen::Vector3f sampledSpecular(const ProbeSamples& samples, const GgxLobe& lobe, double* rayCoverage);
+// lobe only where it is wider than their spacing; `rayCoverage` is Σ w ρ(ω)(n·ω)⁺ / A over the
+// rays: near 1 when they do, 0 for the mirror (whose reference no set of rays holds).
+struct SampledSpecular {
+  Eigen::Vector3f value;
+  double rayCoverage = 0.0;
+  double albedo = 0.0;  // A, by the lobe's own quadrature
+};
+SampledSpecular sampledSpecular(const ProbeSamples& samples, const GgxLobe& lobe);
 
 // Bakes batches of probes (a brick) into basis coefficients. Each probe traces a lattice of
 // `rays` spherical Fibonacci directions, turned by one of a few rotations drawn from the seed:

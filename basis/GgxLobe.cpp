@@ -3,12 +3,14 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "basis/Quadrature.h"
 
 namespace baker {
 
 GgxLobe::GgxLobe(const Eigen::Vector3d& normal, const Eigen::Vector3d& view, double roughness) : normal_(normal) {
+  if (!(roughness >= 0.0 && roughness <= 1.0)) throw std::invalid_argument("GGX roughness outside [0, 1]");
   const double alpha = roughness * roughness;
   alpha2_ = alpha * alpha;
   // A frame about n whose tangent lies in the plane of n and v (any tangent when v is along n).

@@ -15,7 +15,7 @@ class GgxLobe {
  public:
   static constexpr double kMinCosView = 1e-4;
 
-  // Unit n and v; roughness in [0, 1].
+  // Unit n and v; roughness in [0, 1] (std::invalid_argument otherwise, NaN included).
   GgxLobe(const Eigen::Vector3d& normal, const Eigen::Vector3d& view, double roughness);
 
   // ρ(ω) (n·ω)⁺: what one incoming direction ω adds, per unit of solid angle, to the reflected radiance.
@@ -24,7 +24,9 @@ class GgxLobe {
   double albedo() const;
   // Directions ω and weights (summing to albedo()) with Σ w g(ω) ≈ ∫ g(ω) ρ(ω) (n·ω)⁺ dω: the half
   // vectors drawn by D(h)(n·h) at `uNodes` Gauss–Legendre nodes of its inverse CDF times
-  // `phiNodes` equal steps in azimuth; exact for every roughness, the mirror included.
+  // `phiNodes` equal steps in azimuth. Any roughness, the mirror included, takes the same few
+  // nodes; towards grazing views the reflections that fall below the surface cut the integrand
+  // off, so there it converges slowly (at n·v = 1e-4 and 64 × 128 nodes A is 0.8 % low).
   DirectionSet quadrature(int uNodes, int phiNodes) const;
 
   const Eigen::Vector3d& reflection() const { return reflection_; }

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <map>
 #include <mutex>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -87,7 +88,8 @@ SpecularBlend::SpecularBlend(const Basis& basis) {
   const std::vector<FunctionSet> sets = distinctSets(basis);
   const DirectionSet normals = sphericalFibonacci(kFrames);
   // Each cell is its own computation, so the table is the same at any thread count. Isolated:
-  // a caller waiting on specularBlendOf's lock must not be picked up by this loop's threads.
+  // while this thread holds specularBlendOf's lock, waiting for the loop must not let it pick up
+  // an outer task that calls specularBlendOf again.
   tbb::this_task_arena::isolate([&] {
     tbb::parallel_for(0, kSteps * kSteps, [&](int cell) {
       const int j = cell / kSteps, k = cell % kSteps;
@@ -100,6 +102,7 @@ SpecularBlend::SpecularBlend(const Basis& basis) {
 }
 
 double SpecularBlend::lookup(const Table& table, double roughness, double cosView) {
+  if (std::isnan(roughness) || std::isnan(cosView)) throw std::invalid_argument("specular lookup at NaN");
   const double x = std::clamp(roughness, 0.0, 1.0) * (kSteps - 1), y = std::clamp(cosView, 0.0, 1.0) * (kSteps - 1);
   const int j = std::min(int(x), kSteps - 2), k = std::min(int(y), kSteps - 2);
   const double fx = x - j, fy = y - k;

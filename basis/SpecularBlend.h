@@ -13,7 +13,9 @@ namespace baker {
 // is read as a blend of the mirror radiance and the cosine-weighted mean,
 //   S ≈ (1 − w) L(r) + w E(n)/π,   r = 2(n·v)n − v,
 // with one weight w(roughness, n·v) per basis from a table: mirror at roughness 0 (w = 0),
-// diffuse-like at 1. Both terms are exact for a constant sky, so S is too, whatever w. Dividing
+// diffuse-like at 1. In a basis that holds a constant sky exactly both terms are exact for it,
+// so S is too, whatever w. A lobe narrow against the basis's functions gets the blurred
+// radiance the basis holds, however good the weight. Dividing
 // by A keeps S a radiance: a renderer multiplies by A (given alongside, and by its Fresnel).
 //
 // Each weight is the least-squares best over the basis's own functions (every function of every

@@ -64,16 +64,26 @@ nlohmann::json probeJson(const VolumeReconstruction& reading, const BakedProbes&
 nlohmann::json specularJson(const std::optional<SpecularRequest>& request, const Eigen::Vector3d& normal,
                             const VolumeReconstruction& reading, const BakedProbes& baked, std::size_t i) {
   if (!request) return nullptr;
-  const GgxLobe lobe(normal, request->view, request->roughness);
-  double coverage = 0.0;
-  const Eigen::Vector3f fromSamples = sampledSpecular(baked.samples[i], lobe, &coverage);
+  const SampledSpecular reference = sampledSpecular(baked.samples[i], GgxLobe(normal, request->view, request->roughness));
   return {{"normal", vec(normal.cast<float>())},
           {"view", vec(request->view.cast<float>())},
           {"roughness", request->roughness},
-          {"value", vec(reading.specular(baked.probe(i), normal, request->view, request->roughness))},
-          {"from_samples", vec(fromSamples)},
-          {"ray_coverage", coverage},
-          {"albedo", lobe.albedo()}};
+          {"value", vec(reading.specular(baked.probe(i), normal, request->view, request->roughness).value)},
+          // No set of rays holds the mirror's (or any lobe's they all miss) reference.
+          {"from_samples", reference.rayCoverage > 0.0 ? vec(reference.value) : nlohmann::json()},
+          {"ray_coverage", reference.rayCoverage},
+          {"albedo", reference.albedo}};
+}
+
+std::string specularLine(const nlohmann::json& s) {
+  const auto numbers = [&](const char* key, const char* format) {
+    return s[key].is_null() ? std::string("none")
+                            : fmt::format(fmt::runtime(format), fmt::join(s[key].get<std::vector<float>>(), ", "));
+  };
+  return fmt::format("  specular S (roughness {}, normal ({}), view ({})): from the basis ({}), from the samples ({}), "
+                     "the rays covering {:.3f} of the lobe\n",
+                     s["roughness"].get<double>(), numbers("normal", "{}"), numbers("view", "{}"),
+                     numbers("value", "{:.5g}"), numbers("from_samples", "{:.5g}"), s["ray_coverage"].get<double>());
 }
 
 }  // namespace
@@ -100,9 +110,9 @@ int runProbeCommand(int argc, char** argv) {
     if (!normalText.empty()) normal = parseTriple("--normal", normalText);
     if (!(normal.norm() > 0.0)) throw InputError("--normal must not be zero");
     normal.normalize();
-    const std::unique_ptr<BakeJob> job = prepareBake(app, options, std::cerr);
-    if (specular && job->settings().projection.signal != StoredSignal::Radiance)
+    if (specular && parseStoredSignal(options.request.signal) != StoredSignal::Radiance)
       throw InputError("--roughness and --view read specular from radiance: add --signal radiance");
+    const std::unique_ptr<BakeJob> job = prepareBake(app, options, std::cerr);
     const Basis& basis = job->basis();
     const VolumeReconstruction reading(makeBasis(basis.name(), job->request().sgSharpness),
                                        job->settings().projection.signal);
@@ -141,14 +151,7 @@ int runProbeCommand(int argc, char** argv) {
         std::cout << fmt::format("  {:<6}  {:>10.5g} {:>10.5g} {:>10.5g}    {:>10.5g} {:>10.5g} {:>10.5g}    {:.4f}\n", name,
                                  b[0], b[1], b[2], s[0], s[1], s[2], p["sky_visibility_by_normal"][name].get<double>());
       }
-      if (!p["specular"].is_null())
-        std::cout << fmt::format("  specular S (roughness {}, normal ({}), view ({})): from the basis ({:.5g}), from "
-                                 "the samples ({:.5g}), the rays covering {:.3f} of the lobe\n",
-                                 specular->roughness, fmt::join(p["specular"]["normal"].get<std::vector<float>>(), ", "),
-                                 fmt::join(p["specular"]["view"].get<std::vector<float>>(), ", "),
-                                 fmt::join(p["specular"]["value"].get<std::vector<float>>(), ", "),
-                                 fmt::join(p["specular"]["from_samples"].get<std::vector<float>>(), ", "),
-                                 p["specular"]["ray_coverage"].get<double>());
+      if (!p["specular"].is_null()) std::cout << specularLine(p["specular"]);
       std::cout << fmt::format("  coefficients ({}): {}\n", basis.name(),
                                fmt::join(p["coefficients"].get<std::vector<float>>(), " "));
     }

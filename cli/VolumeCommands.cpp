@@ -8,7 +8,6 @@
 #include <optional>
 #include <nlohmann/json.hpp>
 
-#include "basis/GgxLobe.h"
 #include "cli/CommandLine.h"
 #include "cli/SpecularFlags.h"
 #include "common/Error.h"
@@ -76,14 +75,12 @@ nlohmann::json specularJson(const std::optional<SpecularRequest>& request, const
                                  "with --signal radiance",
                                  path));
   const Eigen::Vector3d& view = request->view;
-  const Eigen::Vector3f value = reading.specular(coefficients, normal, view, request->roughness);
-  const double cosView = GgxLobe(normal, view, request->roughness).cosView();  // as specular() reads it
-  const std::shared_ptr<const SpecularBlend> blend = reading.specularBlend();
+  const VolumeReconstruction::Specular s = reading.specular(coefficients, normal, view, request->roughness);
   return {{"roughness", request->roughness},
           {"view", {view.x(), view.y(), view.z()}},
-          {"value", {value.x(), value.y(), value.z()}},
-          {"albedo", blend->albedo(request->roughness, cosView)},
-          {"diffuse_weight", blend->diffuseWeight(request->roughness, cosView)}};
+          {"value", {s.value.x(), s.value.y(), s.value.z()}},
+          {"albedo", s.albedo},
+          {"diffuse_weight", s.diffuseWeight}};
 }
 
 }  // namespace

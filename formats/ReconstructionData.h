@@ -13,6 +13,6 @@ namespace baker {
 // dump() under "baker.reconstruction"; docs/DECODERS.md gives the formulas it refers to.
 // "signal" says what the coefficients hold, so that a decoder which evaluates the stored
 // function as irradiance can refuse radiance coefficients instead of misreading them.
-nlohmann::json reconstructionData(const Basis& basis, StoredSignal signal = StoredSignal::Irradiance);
+nlohmann::json reconstructionData(const Basis& basis, StoredSignal signal);
 
 }  // namespace baker

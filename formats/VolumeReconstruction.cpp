@@ -64,11 +64,17 @@ Eigen::Vector3f VolumeReconstruction::radiance(const float* coefficients, const 
   return basis_->reconstruct(coefficients, direction);
 }
 
-Eigen::Vector3f VolumeReconstruction::specular(const float* coefficients, const Eigen::Vector3d& normal,
-                                               const Eigen::Vector3d& view, double roughness) const {
+VolumeReconstruction::Specular VolumeReconstruction::specular(const float* coefficients, const Eigen::Vector3d& normal,
+                                                              const Eigen::Vector3d& view, double roughness) const {
+  if (signal_ != StoredSignal::Radiance) throw std::logic_error("an irradiance volume holds no specular");
+  std::call_once(blendFitted_, [&] { blend_ = specularBlendOf(*basis_); });
   const GgxLobe lobe(normal, view, roughness);  // the reflection of a view at or below the surface is kept above it
-  const float w = float(specularBlend()->diffuseWeight(roughness, lobe.cosView()));
-  return (1.0f - w) * radiance(coefficients, lobe.reflection()) + w * irradiance(coefficients, normal) / float(M_PI);
+  Specular s;
+  s.diffuseWeight = blend_->diffuseWeight(roughness, lobe.cosView());
+  s.albedo = blend_->albedo(roughness, lobe.cosView());
+  const float w = float(s.diffuseWeight);
+  s.value = (1.0f - w) * radiance(coefficients, lobe.reflection()) + w * irradiance(coefficients, normal) / float(M_PI);
+  return s;
 }
 
 }  // namespace baker

@@ -1,6 +1,7 @@
 #pragma once
 #include <Eigen/Core>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include "basis/Basis.h"
@@ -31,13 +32,16 @@ class VolumeReconstruction {
   // L(ω) in RGB: only a radiance volume holds it (`signal()` says; a logic error otherwise).
   Eigen::Vector3f radiance(const float* coefficients, const Eigen::Vector3d& direction) const;
   // The GGX-weighted mean radiance S in RGB for a unit normal, a unit view (towards the eye) and
-  // a roughness in [0, 1], blended from L(r) and E(n)/π (basis/SpecularBlend.h); radiance
-  // volumes only, like radiance().
-  Eigen::Vector3f specular(const float* coefficients, const Eigen::Vector3d& normal, const Eigen::Vector3d& view,
-                           double roughness) const;
-  // The blend this volume's basis reads specular with; its albedo A is what S is multiplied by
-  // for the radiance a GGX surface with F0 = 1 reflects. Fitted on the first call per process.
-  std::shared_ptr<const SpecularBlend> specularBlend() const { return specularBlendOf(*basis_); }
+  // a roughness in [0, 1], blended from L(r) and E(n)/π (basis/SpecularBlend.h), with the
+  // blend's weight and albedo there; radiance volumes only, like radiance(). The blend is
+  // fitted on the first call (per process and basis).
+  struct Specular {
+    Eigen::Vector3f value;
+    double diffuseWeight = 0.0;
+    double albedo = 0.0;  // what S is multiplied by for the radiance a GGX surface with F0 = 1 reflects
+  };
+  Specular specular(const float* coefficients, const Eigen::Vector3d& normal, const Eigen::Vector3d& view,
+                    double roughness) const;
 
  private:
   // Σ c_i K_i(n) over channel c's functions.
@@ -46,6 +50,8 @@ class VolumeReconstruction {
   std::unique_ptr<Basis> basis_;
   StoredSignal signal_;
   std::vector<std::shared_ptr<const DiffuseResponse>> responses_;  // per channel (radiance only)
+  mutable std::once_flag blendFitted_;
+  mutable std::shared_ptr<const SpecularBlend> blend_;
 };
 
 }  // namespace baker

@@ -46,7 +46,7 @@ Eigen::Vector3d fromJson(const json& d) { return {d[0].get<double>(), d[1].get<d
 // The header's decoder as an importer builds it: the name from "baker.basis" and, for sg-N, the
 // sharpness and axes from "baker.reconstruction".
 baker_decode::BasisDecoder importerDecoder(const Basis& basis) {
-  const json data = reconstructionData(basis);
+  const json data = reconstructionData(basis, StoredSignal::Irradiance);
   const json& set = data["function_sets"][0];
   if (set["type"] != "spherical-gaussians") return baker_decode::BasisDecoder(basis.name().c_str());
   baker_decode::BasisDecoder decoder(basis.name().c_str(), set["sharpness"].get<double>());
@@ -164,7 +164,7 @@ TEST(DecoderHeader, TrilinearWeightsInterpolateBetweenProbes) {
 TEST(DecoderReconstructionData, ChannelsFollowTheLayout) {
   for (const std::string& name : basisNames()) {
     const auto basis = makeBasis(name);
-    const json data = reconstructionData(*basis);
+    const json data = reconstructionData(*basis, StoredSignal::Irradiance);
     EXPECT_EQ(data["variant"], name);
     EXPECT_EQ(data["color_space"], colorSpaceName(basis->colorSpace()));
     ASSERT_EQ(data["channels"].size(), 3u);
@@ -185,7 +185,7 @@ TEST(DecoderReconstructionData, ChannelsFollowTheLayout) {
 }
 
 TEST(DecoderReconstructionData, ConvertsYCoCgToRgbLikeTheLibrary) {
-  const json data = reconstructionData(*makeBasis("ad-ycocg"));
+  const json data = reconstructionData(*makeBasis("ad-ycocg"), StoredSignal::Irradiance);
   ASSERT_TRUE(data.contains("to_rgb"));
   const Eigen::Vector3f ycocg(0.7f, -0.2f, 0.15f);
   const Eigen::Vector3f rgb = toRgb(ColorSpace::YCoCg, ycocg);
@@ -198,14 +198,14 @@ TEST(DecoderReconstructionData, ConvertsYCoCgToRgbLikeTheLibrary) {
   EXPECT_NEAR(header.r, rgb.x(), 1e-6);
   EXPECT_NEAR(header.g, rgb.y(), 1e-6);
   EXPECT_NEAR(header.b, rgb.z(), 1e-6);
-  EXPECT_FALSE(reconstructionData(*makeBasis("ad-rgb")).contains("to_rgb"));
+  EXPECT_FALSE(reconstructionData(*makeBasis("ad-rgb"), StoredSignal::Irradiance).contains("to_rgb"));
 }
 
 TEST(DecoderReconstructionData, SphericalGaussianLobesPeakAtTheirAxes) {
   std::mt19937 rng(kSeed);
   for (const std::string& name : basisNames()) {
     const auto basis = makeBasis(name);
-    const json set = reconstructionData(*basis)["function_sets"][0];
+    const json set = reconstructionData(*basis, StoredSignal::Irradiance)["function_sets"][0];
     if (set["type"] != "spherical-gaussians") continue;
     const SphericalFunctions& lobes = basis->functions(0);
     const double sharpness = set["sharpness"];
@@ -279,7 +279,7 @@ TEST(DecoderReconstructionData, AmbientDiceFunctionsSitOnTheListedVertices) {
   int checked = 0;
   for (const std::string& name : basisNames()) {
     const auto basis = makeBasis(name);
-    const json data = reconstructionData(*basis);
+    const json data = reconstructionData(*basis, StoredSignal::Irradiance);
     if (data["family"] != "ambient-dice") continue;
     const json& icosahedron = data["icosahedron"];
     ASSERT_EQ(icosahedron["vertices"].size(), 12u);
@@ -300,7 +300,7 @@ TEST(DecoderReconstructionData, AmbientDiceFunctionsSitOnTheListedVertices) {
 // An importer may find the triangle by trying the listed ones: the one where all spherical
 // barycentrics are ≥ 0 must be the one the library uses.
 TEST(DecoderReconstructionData, ListedTrianglesAreTheLibrarys) {
-  const json icosahedron = reconstructionData(*makeBasis("ad-linear"))["icosahedron"];
+  const json icosahedron = reconstructionData(*makeBasis("ad-linear"), StoredSignal::Irradiance)["icosahedron"];
   ASSERT_EQ(icosahedron["triangles"].size(), 20u);
   std::mt19937 rng(kSeed);
   for (int n = 0; n < kDirections; ++n) {
@@ -320,7 +320,7 @@ TEST(DecoderReconstructionData, ListedTrianglesAreTheLibrarys) {
 
 TEST(DecoderReconstructionData, AmbientCubeLobesSitOnTheListedAxes) {
   const auto basis = makeBasis("ambient-cube");
-  const json set = reconstructionData(*basis)["function_sets"][0];
+  const json set = reconstructionData(*basis, StoredSignal::Irradiance)["function_sets"][0];
   std::vector<double> values(6);
   for (int i = 0; i < 6; ++i) {
     basis->functions(0).evaluate(fromJson(set["axes"][i]), values.data());
@@ -329,7 +329,7 @@ TEST(DecoderReconstructionData, AmbientCubeLobesSitOnTheListedAxes) {
 }
 
 TEST(DecoderReconstructionData, ShDataNamesTheOrder) {
-  const json set = reconstructionData(*makeBasis("sh-l3"))["function_sets"][0];
+  const json set = reconstructionData(*makeBasis("sh-l3"), StoredSignal::Irradiance)["function_sets"][0];
   EXPECT_EQ(set["type"], "sh");
   EXPECT_EQ(set["order"], 3);
   EXPECT_EQ(set["count"], 16);

@@ -46,7 +46,7 @@ std::vector<std::vector<double>> directions(std::mt19937& rng) {
 
 json samplesOf(const std::string& name, std::mt19937& rng) {
   const auto basis = baker::makeBasis(name);
-  const json set = baker::reconstructionData(*basis)["function_sets"][0];
+  const json set = baker::reconstructionData(*basis, baker::StoredSignal::Irradiance)["function_sets"][0];
   double sharpness = 0.0;
   std::vector<double> axes;
   json entry = {{"basis", name}};

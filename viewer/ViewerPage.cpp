@@ -67,13 +67,13 @@ nlohmann::json describe(const Volume& v, const ViewerPage& page, const std::stri
   return {{"format", kPageFormat},
           {"volume", std::filesystem::path(page.volumePath).filename().string()},
           {"basis", v.basisName},
-          {"reconstruction", reconstructionData(*basis)},
+          {"reconstruction", reconstructionData(*basis, storedSignalOf(v.settings))},
           {"dims", {g.dims.x(), g.dims.y(), g.dims.z()}},
           {"origin", {g.origin.x(), g.origin.y(), g.origin.z()}},
           {"spacing", g.spacing},
           {"coefficients_per_probe", v.coefficientsPerProbe},
           {"visibility_per_probe", v.visibilityPerProbe},
-          {"probe_states", !v.states.empty()},
+          {"probe_states", v.hasProbeStates()},
           // One level until volumes are adaptive: the page lists what there is.
           {"levels", nlohmann::json::array({{{"level", 0}, {"spacing", g.spacing}}})},
           {"units", "irradiance E(n) = integral of L(w) max(0, n.w) dw, in the scene's radiance units times "
