@@ -4,7 +4,8 @@
 
 namespace baker {
 
-// Directions on the unit sphere with quadrature weights summing to 4π.
+// Directions on the unit sphere with quadrature weights: summing to 4π for a rule over the
+// sphere, to the integral of its weight function for a weighted rule (GgxLobe::quadrature).
 struct DirectionSet {
   std::vector<Eigen::Vector3d> directions;
   std::vector<double> weights;
