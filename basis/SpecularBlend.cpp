@@ -51,7 +51,7 @@ Eigen::Vector3d viewFrom(const Eigen::Vector3d& n, double cosView, int frame) {
 double fittedWeight(const std::vector<FunctionSet>& sets, const DirectionSet& normals, double roughness,
                     double cosView) {
   double aa = 0.0, ab = 0.0;
-  std::vector<double> values, mirror, response;
+  std::vector<double> values, mirror, response, specular;
   for (std::size_t f = 0; f < normals.size(); ++f) {
     const Eigen::Vector3d& n = normals.directions[f];
     const GgxLobe lobe(n, viewFrom(n, cosView, int(f)), roughness);
@@ -64,7 +64,7 @@ double fittedWeight(const std::vector<FunctionSet>& sets, const DirectionSet& no
       values.assign(std::size_t(count), 0.0);
       mirror.assign(std::size_t(count), 0.0);
       response.assign(std::size_t(count), 0.0);
-      std::vector<double> specular(std::size_t(count), 0.0);
+      specular.assign(std::size_t(count), 0.0);
       for (std::size_t s = 0; s < q.size(); ++s) {
         set.functions->evaluate(q.directions[s], values.data());
         for (int i = 0; i < count; ++i) specular[std::size_t(i)] += q.weights[s] * values[std::size_t(i)];

@@ -69,4 +69,10 @@ Eigen::Vector3d parseTriple(const std::string& flag, const std::string& text) {
   return v;
 }
 
+Eigen::Vector3d parseDirection(const std::string& flag, const std::string& text) {
+  const Eigen::Vector3d v = parseTriple(flag, text);
+  if (!(v.norm() > 0.0)) throw InputError(flag + " must not be zero");
+  return v.normalized();
+}
+
 }  // namespace baker

@@ -27,5 +27,7 @@ std::string commandLineMessage(const InputError& error);
 
 // "x,y,z" → three finite numbers; InputError naming `flag` otherwise.
 Eigen::Vector3d parseTriple(const std::string& flag, const std::string& text);
+// "x,y,z" → that direction, normalised; InputError naming `flag` also for the zero vector.
+Eigen::Vector3d parseDirection(const std::string& flag, const std::string& text);
 
 }  // namespace baker

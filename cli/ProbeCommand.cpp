@@ -106,10 +106,10 @@ int runProbeCommand(int argc, char** argv) {
     for (const std::string& text : at) positions.push_back(parseTriple("--at", text).cast<float>());
     const std::optional<SpecularRequest> specular = specularRequest(specularFlags);
     if (!normalText.empty() && !specular) throw InputError("--normal goes with --roughness and --view");
-    Eigen::Vector3d normal = specular ? specular->view : Eigen::Vector3d::UnitY();
-    if (!normalText.empty()) normal = parseTriple("--normal", normalText);
-    if (!(normal.norm() > 0.0)) throw InputError("--normal must not be zero");
-    normal.normalize();
+    // Without --normal the surface faces the viewer; without specular no normal is read.
+    const Eigen::Vector3d normal = !normalText.empty() ? parseDirection("--normal", normalText)
+                                   : specular         ? specular->view
+                                                      : Eigen::Vector3d::UnitY();
     if (specular && parseStoredSignal(options.request.signal) != StoredSignal::Radiance)
       throw InputError("--roughness and --view read specular from radiance: add --signal radiance");
     const std::unique_ptr<BakeJob> job = prepareBake(app, options, std::cerr);

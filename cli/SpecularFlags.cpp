@@ -19,9 +19,7 @@ std::optional<SpecularRequest> specularRequest(const SpecularFlags& flags) {
     throw InputError("--roughness and --view go together: specular needs both");
   if (!(*flags.roughness >= 0.0 && *flags.roughness <= 1.0))
     throw InputError(fmt::format("--roughness must be in [0, 1], got {}", *flags.roughness));
-  const Eigen::Vector3d view = parseTriple("--view", flags.viewText);
-  if (!(view.norm() > 0.0)) throw InputError("--view must not be zero");
-  return SpecularRequest{*flags.roughness, view.normalized()};
+  return SpecularRequest{*flags.roughness, parseDirection("--view", flags.viewText)};
 }
 
 }  // namespace baker

@@ -97,9 +97,7 @@ int runSampleCommand(int argc, char** argv) {
   app.add_flag("--json", json, "print the result as JSON on stdout");
   return runGuarded("baker sample", app, argc, argv, [&]() {
     const Eigen::Vector3d position = parseTriple("--at", at);
-    Eigen::Vector3d normal = parseTriple("--normal", normalText);
-    if (!(normal.norm() > 0.0)) throw InputError("--normal must not be zero");
-    normal.normalize();
+    const Eigen::Vector3d normal = parseDirection("--normal", normalText);
     const std::optional<SpecularRequest> specular = specularRequest(specularFlags);
     const AdaptiveVolume levels = readLevels(path);
     const VolumeReconstruction reading(levels.coarsest());
