@@ -12,6 +12,13 @@ void AmbientCubeLobes::evaluate(const Eigen::Vector3d& d, double* values) const 
   }
 }
 
+std::optional<RadialLobes> AmbientCubeLobes::radialLobes() const {
+  RadialLobes lobes{[](double t) { return t > 0.0 ? t * t : 0.0; }, {}};
+  for (int axis = 0; axis < 3; ++axis)
+    for (double sign : {1.0, -1.0}) lobes.axes.push_back(sign * Eigen::Vector3d::Unit(axis));
+  return lobes;
+}
+
 Eigen::Vector3f AmbientCubeBasis::reconstruct(const float* coefficients, const Eigen::Vector3d& d) const {
   // Of each ± pair only the lobe on d's side is non-zero, and its value is d[axis]² either way.
   Eigen::Vector3f color = Eigen::Vector3f::Zero();

@@ -12,6 +12,7 @@ class AmbientCubeLobes : public SphericalFunctions {
   nlohmann::json describe() const override;
   // The lobes kink only on the coordinate planes, which exact quadratures already split on.
   std::vector<Eigen::Vector3d> kinkPlanes() const override { return {}; }
+  std::optional<RadialLobes> radialLobes() const override;
 };
 
 // The ambient cube: one value per cube face for each RGB channel (18 coefficients). Any

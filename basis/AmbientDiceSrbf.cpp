@@ -38,6 +38,12 @@ std::vector<Eigen::Vector3d> AmbientDiceSrbfFunctions::kinkPlanes() const {
   return normals;
 }
 
+std::optional<RadialLobes> AmbientDiceSrbfFunctions::radialLobes() const {
+  RadialLobes lobes{[this](double t) { return t > 0.0 ? lobe(t) : 0.0; }, {}};
+  for (int i = 0; i < count(); ++i) lobes.axes.push_back(Icosahedron::instance().vertex(i));
+  return lobes;
+}
+
 Eigen::Vector3f AmbientDiceSrbf::reconstruct(const float* coefficients, const Eigen::Vector3d& d) const {
   const Icosahedron& ico = Icosahedron::instance();
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();

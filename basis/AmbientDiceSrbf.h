@@ -22,6 +22,7 @@ class AmbientDiceSrbfFunctions : public SphericalFunctions {
   nlohmann::json describe() const override;
   // One plane v̂·d = 0 per antipodal pair of vertices: both lobes of the pair kink on it.
   std::vector<Eigen::Vector3d> kinkPlanes() const override;
+  std::optional<RadialLobes> radialLobes() const override;
   // λ(c) for c ≥ 0.
   double lobe(double cosine) const;
   // The coefficients of c² and c⁴ in λ, normalisation included.

@@ -38,6 +38,12 @@ Eigen::MatrixXd responsesAt(const Eigen::MatrixXd& response, const DirectionSet&
 }  // namespace
 
 DiffuseResponse::DiffuseResponse(const SphericalFunctions& functions, const std::string& label) {
+  if (const std::optional<RadialLobes> lobes = functions.radialLobes()) {
+    radial_.emplace(lobes->profile, label);
+    axes_ = lobes->axes;
+    return;
+  }
+  isSh_ = functions.shBands() >= 0;
   const int degree = functions.polynomialDegree();
   if (degree >= 0) {
     // A polynomial of degree d has no moment above band d: the sum is exact there.
@@ -62,10 +68,27 @@ DiffuseResponse::DiffuseResponse(const SphericalFunctions& functions, const std:
 }
 
 void DiffuseResponse::evaluate(const Eigen::Vector3d& normal, double* response) const {
+  if (radial_) {
+    for (std::size_t i = 0; i < axes_.size(); ++i) response[i] = (*radial_)(axes_[i].dot(normal));
+    return;
+  }
   thread_local Eigen::VectorXd y;
   y.resize(harmonics_.count());
   harmonics_.evaluate(normal, y.data());
   Eigen::Map<Eigen::VectorXd>(response, count()) = fromSh_ * y;
+}
+
+nlohmann::json DiffuseResponse::describe() const {
+  if (radial_)
+    return {{"type", "legendre"},
+            {"coefficients", radial_->coefficients()},
+            {"formula", "K_i(n) = sum over l of coefficients[l] P_l(axis_i . n), P_l the Legendre polynomials"}};
+  if (!isSh_) return nullptr;
+  std::vector<double> bands;
+  for (int l = 0; l <= harmonics_.order(); ++l) bands.push_back(clampedCosineBand(l));
+  return {{"type", "band-factors"},
+          {"coefficients", bands},
+          {"formula", "E(n) = sum over l, m of coefficients[l] c_lm Y_lm(n)"}};
 }
 
 std::shared_ptr<const DiffuseResponse> diffuseResponseOf(const Basis& basis, int channel) {

@@ -1,9 +1,12 @@
 #pragma once
 #include <Eigen/Core>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "basis/RadialLobes.h"
 
 namespace baker {
 
@@ -26,6 +29,13 @@ class SphericalFunctions {
   // coordinates, −1 otherwise: products of polynomials have an exact quadrature with a few
   // hundred nodes, where piecewise-smooth functions need the icosahedral tiling's many.
   virtual int polynomialDegree() const { return -1; }
+
+  // The profile and axes when every function is one profile of the cosine to its own axis:
+  // their diffuse response is then a one-dimensional series a decoder evaluates.
+  virtual std::optional<RadialLobes> radialLobes() const { return std::nullopt; }
+  // L when the set is the real SH of bands 0 … L in their standard order, −1 otherwise: their
+  // diffuse response is then the clamped cosine's band factors alone.
+  virtual int shBands() const { return -1; }
 
   // The set as data an importer evaluates without this code: "type", the constants of its
   // formula in docs/DECODERS.md, and "count" (added by the caller). A volume's file carries it;

@@ -156,6 +156,11 @@ nlohmann::json SphericalGaussians::describe() const {
 
 std::string SphericalGaussians::parameterText() const { return fmt::format("sharpness {}", sharpness()); }
 
+std::optional<RadialLobes> SphericalGaussians::radialLobes() const {
+  const double lambda = sharpness_;
+  return RadialLobes{[lambda](double t) { return std::exp(lambda * (t - 1.0)); }, axes_};
+}
+
 std::map<std::string, double> SphericalGaussianBasis::parameters() const {
   return {{"sg_sharpness", sharpness()}};
 }

@@ -14,6 +14,7 @@ class SphericalGaussians : public SphericalFunctions {
   void evaluate(const Eigen::Vector3d& direction, double* values) const override;
   nlohmann::json describe() const override;
   std::string parameterText() const override;
+  std::optional<RadialLobes> radialLobes() const override;
   const std::vector<Eigen::Vector3d>& axes() const { return axes_; }
   double sharpness() const { return sharpness_; }
 

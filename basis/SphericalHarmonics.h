@@ -20,6 +20,7 @@ class SphericalHarmonics : public SphericalFunctions {
   void evaluate(const Eigen::Vector3d& direction, double* values) const override;
   nlohmann::json describe() const override;
   int polynomialDegree() const override { return order_; }
+  int shBands() const override { return order_; }
 
  private:
   int order_;

@@ -17,6 +17,8 @@
 #include "validate/IrradianceFit.h"
 #include "validate/IrradianceReference.h"
 #include "validate/LatLongEnvironment.h"
+#include "validate/SpecularOnEnvironment.h"
+#include "validate/SphereSignals.h"
 
 namespace baker {
 namespace {
@@ -68,6 +70,111 @@ std::vector<std::string> writeImages(const std::string& dir, const LatLongEnviro
 }
 
 
+// The roughness the radiance report reads specular at (issue 28's).
+const std::vector<double> kRoughness = {0.1, 0.3, 0.6, 1.0};
+
+int reportRadiance(const Basis& basis, const std::string& probePath, bool json) {
+  const auto start = std::chrono::steady_clock::now();
+  const LatLongEnvironment env = LatLongEnvironment::load(probePath);
+  const std::vector<EnvironmentSpecularScore> scores = scoreSpecularOnEnvironment(basis, env, probePath, kRoughness);
+  const std::size_t frames = specularFrames().size();
+  if (json) {
+    nlohmann::json fits = nlohmann::json::object();
+    for (const EnvironmentSpecularScore& s : scores)
+      fits[fitMethodName(s.fit)] = {{"bytes_per_probe", s.bytesPerProbe},
+                                    {"diffuse_relative_rmse", s.diffuseRelativeRmse},
+                                    {"specular_relative_rmse", s.specularRelativeRmse}};
+    nlohmann::json report = {{"probe", probePath},
+                             {"width", env.width()},
+                             {"height", env.height()},
+                             {"basis", basis.name()},
+                             {"signal", "radiance"},
+                             {"coefficients", basis.totalCoefficients()},
+                             {"frames", frames},
+                             {"roughness", kRoughness},
+                             {"reference", "exact integrals over all texels of the image"},
+                             {"fits", fits},
+                             {"seconds", secondsSince(start)}};
+    for (const auto& [key, value] : basis.parameters()) report[key] = value;
+    std::cout << report.dump(2) << "\n";
+    return 0;
+  }
+  std::cout << fmt::format("probe   {} ({} x {} texels)\n", probePath, env.width(), env.height());
+  std::cout << fmt::format("basis   {} ({} coefficients), radiance fitted at {} x {} texels\n", basis.name(),
+                           basis.totalCoefficients(), kSignalWidth, kSignalWidth / 2);
+  std::cout << fmt::format("relative RMSE against the exact integrals over the image, {} normal/view pairs:\n", frames);
+  std::cout << fmt::format("  {:<13} {:>7} {:>9}", "fit", "B/probe", "diffuse");
+  for (double r : kRoughness) std::cout << fmt::format(" {:>9}", fmt::format("r = {}", r));
+  std::cout << "\n";
+  for (const EnvironmentSpecularScore& s : scores) {
+    std::cout << fmt::format("  {:<13} {:>7} {:>8.2f}%", fitMethodName(s.fit), s.bytesPerProbe, 100.0 * s.diffuseRelativeRmse);
+    for (double e : s.specularRelativeRmse) std::cout << fmt::format(" {:>8.2f}%", 100.0 * e);
+    std::cout << "\n";
+  }
+  std::cout << fmt::format("{:.2f} s\n", secondsSince(start));
+  return 0;
+}
+
+// The paper's irradiance fits (section 4) and their RMSE against the exact texel sum.
+int reportIrradiance(const Basis& basis, const std::string& probePath, const std::string& outDir, bool json) {
+  std::error_code ec;
+  if (!outDir.empty() && !std::filesystem::is_directory(outDir, ec))
+    throw InputError(fmt::format("--out-dir {}: no such directory", outDir));
+
+  const auto start = std::chrono::steady_clock::now();
+  const LatLongEnvironment env = LatLongEnvironment::load(probePath);
+  auto stage = std::chrono::steady_clock::now();
+  const Eigen::MatrixX3d reference = exactIrradiance(env);
+  const double referenceSeconds = secondsSince(stage);
+  stage = std::chrono::steady_clock::now();
+  const std::vector<IrradianceFit> fits = fitIrradiance(basis, env, reference);
+  const double fitSeconds = secondsSince(stage);
+  const std::vector<std::string> written =
+      outDir.empty() ? std::vector<std::string>{} : writeImages(outDir, env, reference, fits.front().irradiance);
+  const std::map<std::string, double> parameters = basis.parameters();
+
+  if (json) {
+    nlohmann::json rmse = nlohmann::json::object(), conditioning = nlohmann::json::object();
+    for (const IrradianceFit& fit : fits) {
+      rmse[fit.method] = fit.rmse;
+      if (fit.conditionNumber > 0) conditioning[fit.method] = fit.conditionNumber;
+    }
+    nlohmann::json report = {
+        {"probe", probePath},
+        {"width", env.width()},
+        {"height", env.height()},
+        {"basis", basis.name()},
+        {"color_space", colorSpaceName(basis.colorSpace())},
+        {"coefficients", basis.totalCoefficients()},
+        {"coefficients_per_lookup", basis.coefficientsPerLookup()},
+        {"quantity", "irradiance / pi"},
+        {"reference", "exact sum over all texels"},
+        {"rmse", rmse},
+        {"seconds", {{"total", secondsSince(start)}, {"reference", referenceSeconds}, {"fit", fitSeconds}}},
+    };
+    if (!conditioning.empty()) report["gram_condition_number"] = conditioning;
+    for (const auto& [key, value] : parameters) report[key] = value;
+    if (!written.empty()) report["outputs"] = written;
+    std::cout << report.dump(2) << "\n";
+  } else {
+    std::cout << fmt::format("probe   {} ({} x {} texels)\n", probePath, env.width(), env.height());
+    std::cout << fmt::format("basis   {} ({}, {} coefficients, {} per lookup{})\n", basis.name(),
+                             colorSpaceName(basis.colorSpace()), basis.totalCoefficients(),
+                             basis.coefficientsPerLookup(),
+                             basis.functions(0).parameterText().empty()
+                                 ? std::string()
+                                 : ", " + basis.functions(0).parameterText());
+    std::cout << "RMSE of irradiance/pi against the exact texel sum:\n";
+    for (const IrradianceFit& fit : fits)
+      std::cout << fmt::format("  {:<15} {:<10.6g} {}{}\n", fit.method, fit.rmse, fit.description,
+                               fit.conditionNumber > 0 ? fmt::format(" (Gram condition {:.3g})", fit.conditionNumber)
+                                                       : "");
+    std::cout << fmt::format("exact reference {:.2f} s, fits {:.2f} s\n", referenceSeconds, fitSeconds);
+    for (const std::string& path : written) std::cout << "wrote " << path << "\n";
+  }
+  return 0;
+}
+
 }  // namespace
 
 int runEnvCommand(int argc, char** argv) {
@@ -75,7 +182,8 @@ int runEnvCommand(int argc, char** argv) {
       "Project a lat-long environment's irradiance into a basis and report its RMSE (on E/pi) against the exact "
       "sum over all texels, as in section 4 of the Ambient Dice paper. SH bases: radiance projected by the texel "
       "sum and convolved with the clamped cosine, unclamped and clamped at 0. Other bases: least squares fits to "
-      "the exact irradiance, solid-angle weighted and unweighted."};
+      "the exact irradiance, solid-angle weighted and unweighted. With --signal radiance: fit its radiance instead "
+      "and read diffuse and GGX specular from the fit, against exact integrals over the image."};
   std::string probePath, basisName, outDir;
   double sharpness = 0.0;
   bool json = false;
@@ -87,66 +195,21 @@ int runEnvCommand(int argc, char** argv) {
                  "float EXR, and as PNG: exposure mapping the reference mean to 0.18, sRGB curve; the error PNG "
                  "shows |error| scaled so its maximum is white");
   app.add_option("--sg-sharpness", sharpness, "lobe sharpness for sg-N bases (default: measured per N)");
+  std::string signal = "irradiance";
+  app.add_option("--signal", signal,
+                 "irradiance (default): the paper's irradiance fits above; radiance: fit the probe's radiance and "
+                 "report diffuse and GGX specular (roughness 0.1, 0.3, 0.6, 1) read from it against the exact "
+                 "integrals over the image (docs/specular/report.md)")
+      ->check(CLI::IsMember({"irradiance", "radiance"}));
 
   return runGuarded("baker env", app, argc, argv, [&]() {
     const std::unique_ptr<Basis> basis =
         makeBasis(basisName, app.count("--sg-sharpness") ? std::optional<double>(sharpness) : std::nullopt);
-    std::error_code ec;
-    if (!outDir.empty() && !std::filesystem::is_directory(outDir, ec))
-      throw InputError(fmt::format("--out-dir {}: no such directory", outDir));
-
-    const auto start = std::chrono::steady_clock::now();
-    const LatLongEnvironment env = LatLongEnvironment::load(probePath);
-    auto stage = std::chrono::steady_clock::now();
-    const Eigen::MatrixX3d reference = exactIrradiance(env);
-    const double referenceSeconds = secondsSince(stage);
-    stage = std::chrono::steady_clock::now();
-    const std::vector<IrradianceFit> fits = fitIrradiance(*basis, env, reference);
-    const double fitSeconds = secondsSince(stage);
-    const std::vector<std::string> written =
-        outDir.empty() ? std::vector<std::string>{} : writeImages(outDir, env, reference, fits.front().irradiance);
-    const std::map<std::string, double> parameters = basis->parameters();
-
-    if (json) {
-      nlohmann::json rmse = nlohmann::json::object(), conditioning = nlohmann::json::object();
-      for (const IrradianceFit& fit : fits) {
-        rmse[fit.method] = fit.rmse;
-        if (fit.conditionNumber > 0) conditioning[fit.method] = fit.conditionNumber;
-      }
-      nlohmann::json report = {
-          {"probe", probePath},
-          {"width", env.width()},
-          {"height", env.height()},
-          {"basis", basis->name()},
-          {"color_space", colorSpaceName(basis->colorSpace())},
-          {"coefficients", basis->totalCoefficients()},
-          {"coefficients_per_lookup", basis->coefficientsPerLookup()},
-          {"quantity", "irradiance / pi"},
-          {"reference", "exact sum over all texels"},
-          {"rmse", rmse},
-          {"seconds", {{"total", secondsSince(start)}, {"reference", referenceSeconds}, {"fit", fitSeconds}}},
-      };
-      if (!conditioning.empty()) report["gram_condition_number"] = conditioning;
-      for (const auto& [key, value] : parameters) report[key] = value;
-      if (!written.empty()) report["outputs"] = written;
-      std::cout << report.dump(2) << "\n";
-    } else {
-      std::cout << fmt::format("probe   {} ({} x {} texels)\n", probePath, env.width(), env.height());
-      std::cout << fmt::format("basis   {} ({}, {} coefficients, {} per lookup{})\n", basis->name(),
-                               colorSpaceName(basis->colorSpace()), basis->totalCoefficients(),
-                               basis->coefficientsPerLookup(),
-                               basis->functions(0).parameterText().empty()
-                                   ? std::string()
-                                   : ", " + basis->functions(0).parameterText());
-      std::cout << "RMSE of irradiance/pi against the exact texel sum:\n";
-      for (const IrradianceFit& fit : fits)
-        std::cout << fmt::format("  {:<15} {:<10.6g} {}{}\n", fit.method, fit.rmse, fit.description,
-                                 fit.conditionNumber > 0 ? fmt::format(" (Gram condition {:.3g})", fit.conditionNumber)
-                                                         : "");
-      std::cout << fmt::format("exact reference {:.2f} s, fits {:.2f} s\n", referenceSeconds, fitSeconds);
-      for (const std::string& path : written) std::cout << "wrote " << path << "\n";
+    if (signal == "radiance") {
+      if (!outDir.empty()) throw InputError("--out-dir writes irradiance images: not with --signal radiance");
+      return reportRadiance(*basis, probePath, json);
     }
-    return 0;
+    return reportIrradiance(*basis, probePath, outDir, json);
   });
 }
 

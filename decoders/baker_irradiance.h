@@ -10,6 +10,11 @@
 //   baker_decode::BasisDecoder decoder("ad-ycocg");   // sg-N: pass the "sharpness" of baker.reconstruction
 //   baker_decode::Rgb e = decoder.irradiance(probeCoefficients, baker_decode::Vec3{0, 1, 0});
 //
+// A volume baked with --signal radiance ("signal": "radiance" in "baker.reconstruction") holds
+// the incoming radiance L(ω) in the same functions instead: radiance() evaluates it,
+// irradianceFromRadiance() gives E(n) from each function's diffuse response, and specular() a
+// GGX lobe's mean radiance from the file's "baker.specular" table.
+//
 // The formulas are in docs/DECODERS.md; the same constants are in the file's
 // "baker.reconstruction" metadata.
 #ifndef BAKER_IRRADIANCE_H
@@ -131,6 +136,7 @@ enum class Barycentrics { Spherical, Flat };
 
 const int kMaxShOrder = 64;
 const int kMaxLobes = 64;
+const int kMaxResponseTerms = 224;
 
 struct FunctionSet {
   FunctionSetKind kind = FunctionSetKind::SphericalHarmonics;
@@ -140,6 +146,10 @@ struct FunctionSet {
   int lobeCount = 0;                                    // spherical Gaussians
   double sharpness = 0.0;
   double axes[3 * kMaxLobes] = {};
+  // Radiance: the lobes' diffuse response h(x) = Σ_l response[l] P_l(x), x = axis·n, for the
+  // three radial kinds; 0 terms when unknown (spherical Gaussians until setDiffuseResponse).
+  int responseTerms = 0;
+  double response[kMaxResponseTerms] = {};
 
   int count() const {
     switch (kind) {
@@ -161,7 +171,9 @@ namespace detail {
 //   Q(m,m) = √((2m+1)/(2m))·Q(m−1,m−1),  Q(l,m) = A·(z·Q(l−1,m) − B·Q(l−2,m)),
 //   A = √((4l² − 1)/(l² − m²)),  B = √(((l−1)² − m²)/(4(l−1)² − 1)),
 // stay in range at any order, and sin^m θ·(cos mφ, sin mφ) is (x + iy)^m, so no angles appear.
-inline void accumulateSphericalHarmonics(int order, const float* coefficients, int arrays, const Vec3& d, double* sums) {
+// bandScale: null, or a factor per band l (the clamped cosine's, for irradiance from radiance).
+inline void accumulateSphericalHarmonics(int order, const float* coefficients, int arrays, const Vec3& d, double* sums,
+                                         const double* bandScale = nullptr) {
   const int count = (order + 1) * (order + 1);
   double re = 1.0, im = 0.0;                      // (x + iy)^m
   double diagonal = std::sqrt(1.0 / (4.0 * kPi));  // Q(m,m)
@@ -182,12 +194,13 @@ inline void accumulateSphericalHarmonics(int order, const float* coefficients, i
         current = next;
       }
       const int centre = l * l + l;
+      const double scaled = bandScale ? bandScale[l] * current : current;
       for (int k = 0; k < arrays; ++k) {
         const float* c = coefficients + k * count;
         if (m == 0)
-          sums[k] += current * c[centre];
+          sums[k] += scaled * c[centre];
         else
-          sums[k] += std::sqrt(2.0) * current * (re * c[centre + m] + im * c[centre - m]);
+          sums[k] += std::sqrt(2.0) * scaled * (re * c[centre + m] + im * c[centre - m]);
       }
     }
   }
@@ -240,6 +253,37 @@ inline double bezierPatch(const IcosahedronTriangle& t, Barycentrics kind, const
   return value + 6.0 * b[0] * b[1] * b[2] * centre;
 }
 
+// A_l = 2π ∫₀¹ t P_l(t) dt: how the clamped cosine scales band l (π, 2π/3, π/4, 0, −π/24, …).
+inline double clampedCosineBand(int l) {
+  if (l == 0) return kPi;
+  if (l == 1) return 2.0 * kPi / 3.0;
+  if (l % 2 == 1) return 0.0;
+  double ratio = 1.0;  // l!/(2^l ((l/2)!)²), as a product that stays in range
+  for (int k = 1; k <= l / 2; ++k) ratio *= double(l / 2 + k) / (4.0 * k);
+  const double sign = (l / 2 - 1) % 2 == 0 ? 1.0 : -1.0;
+  return 2.0 * kPi * sign / ((l + 2.0) * (l - 1.0)) * ratio;
+}
+
+// Σ_l k[l] P_l(x), l < terms, by the three-term recurrence.
+inline double legendreSeries(const double* k, int terms, double x) {
+  if (terms <= 0) return 0.0;
+  double sum = k[0], previous = 1.0, current = x;
+  for (int l = 1; l < terms; ++l) {
+    if (l > 1) {
+      const double next = ((2.0 * l - 1.0) * x * current - (l - 1.0) * previous) / l;
+      previous = current;
+      current = next;
+    }
+    sum += k[l] * current;
+  }
+  return sum;
+}
+
+inline Vec3 cubeAxis(int lobe) {
+  const double sign = lobe % 2 == 0 ? 1.0 : -1.0;
+  return Vec3{lobe / 2 == 0 ? sign : 0.0, lobe / 2 == 1 ? sign : 0.0, lobe / 2 == 2 ? sign : 0.0};
+}
+
 }  // namespace detail
 
 // Σ_i coefficients[k·count + i]·f_i(d) for k < arrays, into sums[k]: `arrays` channels that
@@ -290,6 +334,84 @@ inline void expand(const FunctionSet& set, const float* coefficients, int arrays
   }
 }
 
+// Σ_i coefficients[k·count + i]·K_i(n): the irradiance of radiance stored in `set`, where
+// K_i(n) = ∫ f_i(ω) max(0, n·ω) dω. False when the set's response is not known here.
+inline bool expandIrradianceFromRadiance(const FunctionSet& set, const float* coefficients, int arrays, const Vec3& n,
+                                         double* sums) {
+  const int count = set.count();
+  for (int k = 0; k < arrays; ++k) sums[k] = 0.0;
+  if (set.kind == FunctionSetKind::SphericalHarmonics) {
+    double bands[kMaxShOrder + 1];
+    for (int l = 0; l <= set.shOrder; ++l) bands[l] = detail::clampedCosineBand(l);
+    detail::accumulateSphericalHarmonics(set.shOrder, coefficients, arrays, n, sums, bands);
+    return true;
+  }
+  const bool radial = set.kind == FunctionSetKind::IcosahedronLobes || set.kind == FunctionSetKind::CubeLobes ||
+                      set.kind == FunctionSetKind::SphericalGaussians;
+  if (!radial || set.responseTerms <= 0) return false;
+  for (int i = 0; i < count; ++i) {
+    Vec3 axis;
+    if (set.kind == FunctionSetKind::IcosahedronLobes)
+      axis = icosahedronVertex(i);
+    else if (set.kind == FunctionSetKind::CubeLobes)
+      axis = detail::cubeAxis(i);
+    else
+      axis = Vec3{set.axes[3 * i], set.axes[3 * i + 1], set.axes[3 * i + 2]};
+    const double response = detail::legendreSeries(set.response, set.responseTerms, dot(axis, n));
+    for (int k = 0; k < arrays; ++k) sums[k] += response * coefficients[k * count + i];
+  }
+  return true;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Glossy specular from a radiance volume: "baker.specular" (docs/DECODERS.md, "Glossy specular").
+
+// The file's diffuse_weight and albedo, [roughness node j][n·v node k], nodes j/15 and k/15.
+struct SpecularTable {
+  static const int kSteps = 16;
+  double diffuseWeight[kSteps][kSteps];
+  double albedo[kSteps][kSteps];
+};
+
+// Bilinear in (roughness, n·v), both clamped to [0, 1].
+inline double specularTableLookup(const double (&table)[SpecularTable::kSteps][SpecularTable::kSteps], double roughness,
+                                  double cosView) {
+  const int last = SpecularTable::kSteps - 1;
+  const double x = std::fmin(std::fmax(roughness, 0.0), 1.0) * last, y = std::fmin(std::fmax(cosView, 0.0), 1.0) * last;
+  const int j = x < last - 1 ? int(x) : last - 1, k = y < last - 1 ? int(y) : last - 1;
+  const double fx = x - j, fy = y - k;
+  return (1.0 - fx) * ((1.0 - fy) * table[j][k] + fy * table[j][k + 1]) +
+         fx * ((1.0 - fy) * table[j + 1][k] + fy * table[j + 1][k + 1]);
+}
+
+// The view the lobe is read at: n·v clamped to [1e-4, 1], in the plane of n and v (a view at or
+// below the surface is taken just above it), and its mirror direction 2(n·v)n − v.
+struct SpecularView {
+  double cosView;
+  Vec3 reflection;
+};
+
+inline SpecularView specularView(const Vec3& n, const Vec3& v) {
+  Vec3 along = v + (-dot(n, v)) * n;
+  if (std::sqrt(dot(along, along)) < 1e-12) {
+    // v along n: any tangent (this one is Eigen's unitOrthogonal, as the library's).
+    const double tiny = 1e-12 * std::fabs(n.z);
+    along = std::fabs(n.x) > tiny || std::fabs(n.y) > tiny ? Vec3{-n.y, n.x, 0.0} : Vec3{0.0, -n.z, n.y};
+  }
+  const Vec3 tangent = normalize(along);
+  SpecularView s;
+  s.cosView = std::fmin(std::fmax(dot(n, v), 1e-4), 1.0);
+  const Vec3 view = s.cosView * n + std::sqrt(1.0 - s.cosView * s.cosView) * tangent;
+  s.reflection = (2.0 * s.cosView) * n + (-1.0) * view;
+  return s;
+}
+
+struct Specular {
+  Rgb value;             // S, the GGX-weighted mean radiance: reflected radiance = albedo·F·S
+  double albedo;         // the lobe's directional albedo A (F0 = 1)
+  double diffuseWeight;  // w of S = (1 − w)·L(r) + w·E(n)/π
+};
+
 inline Rgb ycocgToRgb(double y, double co, double cg) { return Rgb{y + co - cg, y + cg, y - co - cg}; }
 
 // ---------------------------------------------------------------------------------------------
@@ -339,6 +461,68 @@ class BasisDecoder {
     return v;
   }
 
+  // ---- Radiance volumes ("signal": "radiance") ----
+
+  // The Legendre series of the lobes' diffuse response: "diffuse_response"."coefficients" of the
+  // function set in "baker.reconstruction". sg-N needs it; ad-cos2, ad-srbf and ambient-cube
+  // have it built in (the file's equals it). False for other bases or more than
+  // kMaxResponseTerms terms.
+  bool setDiffuseResponse(const double* legendre, int terms) {
+    const FunctionSetKind kind = primary_.kind;
+    if (ycocg_ || terms < 1 || terms > kMaxResponseTerms || kind == FunctionSetKind::SphericalHarmonics ||
+        kind == FunctionSetKind::IcosahedronLinear || kind == FunctionSetKind::IcosahedronBezier)
+      return false;
+    for (int l = 0; l < terms; ++l) primary_.response[l] = legendre[l];
+    primary_.responseTerms = terms;
+    return true;
+  }
+
+  // Whether irradianceFromRadiance() can decode: SH and the radial lobes (sg-N after
+  // setDiffuseResponse). The piecewise Ambient Dice variants (ad-linear, ad-rgb, ad-rgb-flat,
+  // ad-ycocg) have no closed-form response: their file states none, and only baker reads them.
+  bool decodesRadiance() const {
+    switch (primary_.kind) {
+      case FunctionSetKind::SphericalHarmonics: return true;
+      case FunctionSetKind::IcosahedronLobes:
+      case FunctionSetKind::CubeLobes:
+      case FunctionSetKind::SphericalGaussians: return primary_.responseTerms > 0;
+      default: return false;
+    }
+  }
+
+  // RGB radiance L(d) arriving from unit direction d.
+  Rgb radiance(const float* coefficients, const Vec3& d) const { return irradiance(coefficients, d); }
+
+  // RGB irradiance E(n) = ∫ L(ω) max(0, n·ω) dω at unit normal n; zeros unless decodesRadiance().
+  Rgb irradianceFromRadiance(const float* coefficients, const Vec3& n) const {
+    double sums[3] = {0.0, 0.0, 0.0};
+    if (ycocg_) return Rgb{0.0, 0.0, 0.0};
+    expandIrradianceFromRadiance(primary_, coefficients, 3, n, sums);
+    return Rgb{sums[0], sums[1], sums[2]};
+  }
+
+  // Sky visibility (1/π)∫V(ω) max(0, n·ω) dω from the stored V(ω) (channel 0's functions).
+  double visibilityFromRadiance(const float* coefficients, const Vec3& n) const {
+    double v = 0.0;
+    if (!ycocg_) expandIrradianceFromRadiance(primary_, coefficients, 1, n, &v);
+    return v / kPi;
+  }
+
+  // Glossy specular for a GGX lobe (F0 = 1, α = roughness²) at unit normal n and unit view v
+  // (towards the viewer): S = (1 − w)·L(r) + w·E(n)/π with w and the albedo from the table.
+  Specular specular(const float* coefficients, const Vec3& n, const Vec3& v, double roughness,
+                    const SpecularTable& table) const {
+    const SpecularView view = specularView(n, v);
+    Specular s;
+    s.diffuseWeight = specularTableLookup(table.diffuseWeight, roughness, view.cosView);
+    s.albedo = specularTableLookup(table.albedo, roughness, view.cosView);
+    const Rgb mirror = radiance(coefficients, view.reflection), e = irradianceFromRadiance(coefficients, n);
+    const double w = s.diffuseWeight, toRadiance = w / kPi;
+    s.value = Rgb{(1.0 - w) * mirror.r + toRadiance * e.r, (1.0 - w) * mirror.g + toRadiance * e.g,
+                  (1.0 - w) * mirror.b + toRadiance * e.b};
+    return s;
+  }
+
  private:
   // The digits after `prefix` in `name` as a number in [low, high], or −1.
   static int numberAfter(const char* name, const char* prefix, int low, int high) {
@@ -382,6 +566,12 @@ class BasisDecoder {
       f.kind = FunctionSetKind::IcosahedronLobes;
       f.cos2 = scale * w2;
       f.cos4 = scale * w4;
+      // Responses of max(0, t)² and max(0, t)⁴ (docs/DECODERS.md): π(1 + x)²/8 and
+      // π(1/16 + x/6 + x²/8 − x⁴/48), as Legendre series.
+      const double square[5] = {kPi / 6.0, kPi / 4.0, kPi / 12.0, 0.0, 0.0};
+      const double fourth[5] = {kPi / 10.0, kPi / 6.0, kPi / 14.0, 0.0, -kPi / 210.0};
+      f.responseTerms = 5;
+      for (int l = 0; l < 5; ++l) f.response[l] = f.cos2 * square[l] + f.cos4 * fourth[l];
     } else if (std::strcmp(name, "ad-rgb") == 0 || std::strcmp(name, "ad-rgb-flat") == 0) {
       f.kind = FunctionSetKind::IcosahedronBezier;
       f.barycentrics = std::strcmp(name, "ad-rgb") == 0 ? Barycentrics::Spherical : Barycentrics::Flat;
@@ -393,6 +583,9 @@ class BasisDecoder {
       chroma_.barycentrics = Barycentrics::Spherical;
     } else if (std::strcmp(name, "ambient-cube") == 0) {
       f.kind = FunctionSetKind::CubeLobes;
+      const double square[3] = {kPi / 6.0, kPi / 4.0, kPi / 12.0};  // π(1 + x)²/8
+      f.responseTerms = 3;
+      for (int l = 0; l < 3; ++l) f.response[l] = square[l];
     } else {
       return false;
     }

@@ -7,6 +7,9 @@
 //   import { BasisDecoder } from './baker_irradiance.js';
 //   const decoder = new BasisDecoder( 'ad-ycocg' );    // sg-N: pass the "sharpness" of baker.reconstruction
 //   const [ r, g, b ] = decoder.irradiance( probeCoefficients, [ 0, 1, 0 ] );
+//
+// A radiance volume ("signal": "radiance" in baker.reconstruction) holds L(ω) in the same
+// functions: radiance(), irradianceFromRadiance() and specular() decode it, as in the header.
 
 const PHI = 0.61803398874989484820; // (√5 − 1)/2
 const MAX_SH_ORDER = 64;
@@ -72,7 +75,8 @@ export function sphericalFibonacciAxis( i, n ) {
 
 // Real SH without the Condon–Shortley phase, polar axis z, through the recurrences of the
 // normalised Legendre functions (they stay in range at any order); (x + iy)^m replaces angles.
-function accumulateSphericalHarmonics( order, coefficients, offset, arrays, d, sums ) {
+// bandScale: null, or a factor per band l (the clamped cosine's, for irradiance from radiance).
+function accumulateSphericalHarmonics( order, coefficients, offset, arrays, d, sums, bandScale = null ) {
 	const count = ( order + 1 ) * ( order + 1 );
 	let re = 1, im = 0, diagonal = Math.sqrt( 1 / ( 4 * Math.PI ) );
 	for ( let m = 0; m <= order; ++ m ) {
@@ -91,15 +95,43 @@ function accumulateSphericalHarmonics( order, coefficients, offset, arrays, d, s
 				previous = current;
 				current = next;
 			}
-			const centre = l * l + l;
+			const centre = l * l + l, scaled = bandScale ? bandScale[ l ] * current : current;
 			for ( let k = 0; k < arrays; ++ k ) {
 				const c = offset + k * count;
-				if ( m === 0 ) sums[ k ] += current * coefficients[ c + centre ];
-				else sums[ k ] += Math.SQRT2 * current * ( re * coefficients[ c + centre + m ] + im * coefficients[ c + centre - m ] );
+				if ( m === 0 ) sums[ k ] += scaled * coefficients[ c + centre ];
+				else sums[ k ] += Math.SQRT2 * scaled * ( re * coefficients[ c + centre + m ] + im * coefficients[ c + centre - m ] );
 			}
 		}
 	}
 }
+
+// A_l = 2π ∫₀¹ t P_l(t) dt: how the clamped cosine scales band l (π, 2π/3, π/4, 0, −π/24, …).
+export function clampedCosineBand( l ) {
+	if ( l === 0 ) return Math.PI;
+	if ( l === 1 ) return 2 * Math.PI / 3;
+	if ( l % 2 === 1 ) return 0;
+	let ratio = 1; // l!/(2^l ((l/2)!)²), as a product that stays in range
+	for ( let k = 1; k <= l / 2; ++ k ) ratio *= ( l / 2 + k ) / ( 4 * k );
+	const sign = ( l / 2 - 1 ) % 2 === 0 ? 1 : - 1;
+	return 2 * Math.PI * sign / ( ( l + 2 ) * ( l - 1 ) ) * ratio;
+}
+
+// Σ_l k[l] P_l(x) by the three-term recurrence.
+function legendreSeries( k, x ) {
+	if ( k.length === 0 ) return 0;
+	let sum = k[ 0 ], previous = 1, current = x;
+	for ( let l = 1; l < k.length; ++ l ) {
+		if ( l > 1 ) {
+			const next = ( ( 2 * l - 1 ) * x * current - ( l - 1 ) * previous ) / l;
+			previous = current;
+			current = next;
+		}
+		sum += k[ l ] * current;
+	}
+	return sum;
+}
+
+const CUBE_AXES = [ [ 1, 0, 0 ], [ - 1, 0, 0 ], [ 0, 1, 0 ], [ 0, - 1, 0 ], [ 0, 0, 1 ], [ 0, 0, - 1 ] ];
 
 // The cubic Bézier patch of one triangle (Ambient Dice §2.3.1): corners are the vertex values,
 // edge points add the stored gradient along the edge, and the centre blends three points, each
@@ -149,6 +181,8 @@ export class FunctionSet {
 		this.cos4 = options.cos4 ?? 0;
 		this.sharpness = options.sharpness ?? 0;
 		this.axes = options.axes ?? [];
+		// Radiance: the radial lobes' diffuse response Σ_l response[l] P_l(axis·n); empty when unknown.
+		this.response = options.response ?? [];
 	}
 
 	get count() {
@@ -200,6 +234,48 @@ export class FunctionSet {
 		}
 		return sums;
 	}
+
+	// Σ_i coefficients[offset + k·count + i]·K_i(n), K_i(n) = ∫ f_i(ω) max(0, n·ω) dω; null when
+	// the set's response is not known here (the piecewise Ambient Dice sets, sg-N without its series).
+	expandIrradianceFromRadiance( coefficients, offset, arrays, n ) {
+		const count = this.count, sums = new Array( arrays ).fill( 0 );
+		if ( this.kind === 'sh' ) {
+			const bands = Array.from( { length: this.shOrder + 1 }, ( _, l ) => clampedCosineBand( l ) );
+			accumulateSphericalHarmonics( this.shOrder, coefficients, offset, arrays, n, sums, bands );
+			return sums;
+		}
+		if ( ! [ 'icosahedron-lobes', 'cube-lobes', 'spherical-gaussians' ].includes( this.kind ) || this.response.length === 0 ) return null;
+		const axes = this.kind === 'icosahedron-lobes' ? VERTICES : this.kind === 'cube-lobes' ? CUBE_AXES : this.axes;
+		for ( let i = 0; i < count; ++ i ) {
+			const response = legendreSeries( this.response, dot( axes[ i ], n ) );
+			for ( let k = 0; k < arrays; ++ k ) sums[ k ] += response * coefficients[ offset + k * count + i ];
+		}
+		return sums;
+	}
+}
+
+// Glossy specular: "baker.specular"'s diffuse_weight or albedo ([roughness node j][n·v node k],
+// nodes j/15 and k/15), bilinear with both arguments clamped to [0, 1].
+export function specularTableLookup( table, roughness, cosView ) {
+	const last = table.length - 1;
+	const x = Math.min( Math.max( roughness, 0 ), 1 ) * last, y = Math.min( Math.max( cosView, 0 ), 1 ) * last;
+	const j = Math.min( Math.floor( x ), last - 1 ), k = Math.min( Math.floor( y ), last - 1 ), fx = x - j, fy = y - k;
+	return ( 1 - fx ) * ( ( 1 - fy ) * table[ j ][ k ] + fy * table[ j ][ k + 1 ] ) + fx * ( ( 1 - fy ) * table[ j + 1 ][ k ] + fy * table[ j + 1 ][ k + 1 ] );
+}
+
+// n·v clamped to [1e-4, 1] in the plane of n and v (a view at or below the surface is taken just
+// above it), and the mirror direction 2(n·v)n − v of that view.
+export function specularView( n, v ) {
+	const nv = dot( n, v );
+	let along = [ v[ 0 ] - nv * n[ 0 ], v[ 1 ] - nv * n[ 1 ], v[ 2 ] - nv * n[ 2 ] ];
+	if ( Math.sqrt( dot( along, along ) ) < 1e-12 ) {
+		// v along n: any tangent (this one is Eigen's unitOrthogonal, as the library's).
+		const tiny = 1e-12 * Math.abs( n[ 2 ] );
+		along = Math.abs( n[ 0 ] ) > tiny || Math.abs( n[ 1 ] ) > tiny ? [ - n[ 1 ], n[ 0 ], 0 ] : [ 0, - n[ 2 ], n[ 1 ] ];
+	}
+	const t = normalize( along ), cosView = Math.min( Math.max( nv, 1e-4 ), 1 ), sinView = Math.sqrt( 1 - cosView * cosView );
+	const reflection = [ 0, 1, 2 ].map( ( a ) => 2 * cosView * n[ a ] - ( cosView * n[ a ] + sinView * t[ a ] ) );
+	return { cosView, reflection };
 }
 
 function numberAfter( name, prefix, low, high ) {
@@ -242,6 +318,48 @@ export class BasisDecoder {
 	// Sky visibility (1/π)∫V max(0, n·ω) dω from one probe's visibility values (channel 0's functions).
 	visibility( coefficients, n, offset = 0 ) { return this.primary.expand( coefficients, offset, 1, n )[ 0 ]; }
 
+	// ---- Radiance volumes ("signal": "radiance") ----
+
+	// The lobes' response series: "diffuse_response"."coefficients" of the function set in
+	// "baker.reconstruction". sg-N needs it; ad-cos2, ad-srbf and ambient-cube have it built in.
+	// False for the other bases.
+	setDiffuseResponse( legendre ) {
+		if ( this.ycocg || ! [ 'icosahedron-lobes', 'cube-lobes', 'spherical-gaussians' ].includes( this.primary.kind ) || legendre.length < 1 ) return false;
+		this.primary.response = Array.from( legendre );
+		return true;
+	}
+
+	// SH and the radial lobes (sg-N after setDiffuseResponse); not the piecewise Ambient Dice variants.
+	get decodesRadiance() {
+		return ! this.ycocg && ( this.primary.kind === 'sh' || this.primary.response.length > 0 );
+	}
+
+	// RGB radiance L(d) arriving from unit direction d.
+	radiance( coefficients, d, offset = 0 ) { return this.irradiance( coefficients, d, offset ); }
+
+	// RGB irradiance E(n) = ∫ L(ω) max(0, n·ω) dω; null unless decodesRadiance.
+	irradianceFromRadiance( coefficients, n, offset = 0 ) {
+		return this.ycocg ? null : this.primary.expandIrradianceFromRadiance( coefficients, offset, 3, n );
+	}
+
+	// Sky visibility (1/π)∫V(ω) max(0, n·ω) dω from the stored V(ω); null unless decodesRadiance.
+	visibilityFromRadiance( coefficients, n, offset = 0 ) {
+		const sums = this.ycocg ? null : this.primary.expandIrradianceFromRadiance( coefficients, offset, 1, n );
+		return sums && sums[ 0 ] / Math.PI;
+	}
+
+	// GGX (F0 = 1, α = roughness²) mean radiance S = (1 − w)·L(r) + w·E(n)/π at unit normal n and
+	// unit view v (towards the viewer); table is "baker.specular" ({ diffuse_weight, albedo }).
+	// { value: [r, g, b], albedo, diffuseWeight }; null unless decodesRadiance.
+	specular( coefficients, n, v, roughness, table, offset = 0 ) {
+		const e = this.irradianceFromRadiance( coefficients, n, offset );
+		if ( ! e ) return null;
+		const view = specularView( n, v );
+		const w = specularTableLookup( table.diffuse_weight, roughness, view.cosView );
+		const mirror = this.radiance( coefficients, view.reflection, offset );
+		return { value: mirror.map( ( l, c ) => ( 1 - w ) * l + w * e[ c ] / Math.PI ), albedo: specularTableLookup( table.albedo, roughness, view.cosView ), diffuseWeight: w };
+	}
+
 	#parse( name, sgSharpness ) {
 		const shOrder = numberAfter( name, 'sh-l', 0, MAX_SH_ORDER );
 		const lobes = numberAfter( name, 'sg-', 1, MAX_LOBES );
@@ -257,8 +375,10 @@ export class BasisDecoder {
 			// ad-srbf is the paper's 0.7·c² + 0.3·c⁴; both normalised so that the 12 lobes sum to
 			// 1, from Σ max(0, v̂·n)² = 2 and Σ max(0, v̂·n)⁴ = 6/5 over the vertices.
 			const paper = name === 'ad-srbf', w2 = paper ? 0.7 : 1, w4 = paper ? 0.3 : 0;
-			const scale = 1 / ( 2 * w2 + 1.2 * w4 );
-			this.primary = new FunctionSet( 'icosahedron-lobes', { cos2: scale * w2, cos4: scale * w4 } );
+			const scale = 1 / ( 2 * w2 + 1.2 * w4 ), cos2 = scale * w2, cos4 = scale * w4;
+			// Responses of max(0, t)² and max(0, t)⁴: π(1 + x)²/8 and π(1/16 + x/6 + x²/8 − x⁴/48).
+			const square = [ Math.PI / 6, Math.PI / 4, Math.PI / 12, 0, 0 ], fourth = [ Math.PI / 10, Math.PI / 6, Math.PI / 14, 0, - Math.PI / 210 ];
+			this.primary = new FunctionSet( 'icosahedron-lobes', { cos2, cos4, response: square.map( ( k, l ) => cos2 * k + cos4 * fourth[ l ] ) } );
 		} else if ( name === 'ad-rgb' || name === 'ad-rgb-flat' ) {
 			this.primary = new FunctionSet( 'icosahedron-bezier', { spherical: name === 'ad-rgb' } );
 		} else if ( name === 'ad-ycocg' ) {
@@ -266,7 +386,7 @@ export class BasisDecoder {
 			this.primary = new FunctionSet( 'icosahedron-bezier', { spherical: true } );
 			this.chroma = new FunctionSet( 'icosahedron-linear', { spherical: true } );
 		} else if ( name === 'ambient-cube' ) {
-			this.primary = new FunctionSet( 'cube-lobes' );
+			this.primary = new FunctionSet( 'cube-lobes', { response: [ Math.PI / 6, Math.PI / 4, Math.PI / 12 ] } ); // π(1 + x)²/8
 		} else {
 			return false;
 		}

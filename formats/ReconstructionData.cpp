@@ -3,6 +3,7 @@
 #include <cmath>
 #include <vector>
 
+#include "basis/DiffuseResponse.h"
 #include "basis/Icosahedron.h"
 
 namespace baker {
@@ -47,6 +48,7 @@ json reconstructionData(const Basis& basis, StoredSignal signal) {
       distinct.push_back(functions);
       json set = functions->describe();
       set["count"] = functions->count();
+      if (signal == StoredSignal::Radiance) set["diffuse_response"] = diffuseResponseOf(basis, c)->describe();
       sets.push_back(set);
     }
     channels.push_back({{"name", channelName(basis.colorSpace(), c)},

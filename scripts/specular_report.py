@@ -2,7 +2,9 @@
 """Regenerates docs/specular/report.md: per basis and fit, the GGX specular and the diffuse
 irradiance a radiance bake reconstructs, against the exact reference from each probe's own rays
 (`baker probe --signal radiance --roughness R --view V --normal N`, docs/COMMANDS.md#probe), on
-the scenes the project ships. A few minutes on 2 cores.
+the scenes the project ships; then the same read from each basis's radiance fit of the shared
+light probes and HDR environments, against exact integrals over their texels (`baker env
+--signal radiance`). A few minutes on 2 cores.
 
     python3 scripts/specular_report.py [--rays N]
 """
@@ -18,8 +20,13 @@ SHARED = os.path.join(ROOT, "..", "shared", "data")
 # The scenes the project ships, lit as data/README.md says: window_room only through its window,
 # under a shared HDR (left out without ../shared).
 SCENES = {"default_room": [], "window_room": ["--env", os.path.join(SHARED, "hdri", "studio_small_03_1k.hdr")]}
-BASES = ("sh-l2", "sh-l4", "ad-srbf", "sg-12", "ambient-cube")
+# (label, basis, its options): sg-12 also with the seed post's λ = 8.
+BASES = (("sh-l2", "sh-l2", []), ("sh-l4", "sh-l4", []), ("ad-srbf", "ad-srbf", []), ("sg-12", "sg-12", []),
+         ("sg-12 (λ = 8)", "sg-12", ["--sg-sharpness", "8"]), ("ambient-cube", "ambient-cube", []))
 NON_NEGATIVE = ("ad-srbf", "sg-12", "ambient-cube")
+# The distant lights: the paper's light probes and the shared HDR environments.
+IMAGES = sorted(os.path.join(SHARED, folder, f) for folder in ("probes", "hdri")
+                if os.path.isdir(os.path.join(SHARED, folder)) for f in os.listdir(os.path.join(SHARED, folder)) if f.endswith(".hdr"))
 ROUGHNESS = (0.1, 0.3, 0.6, 1.0)
 # (normal, view) pairs: up, sideways and down-facing surfaces, each seen off its normal.
 FRAMES = (((0, 1, 0), (0.6, 0.8, 0)), ((1, 0, 0), (0.8, 0, 0.6)), ((0, -1, 0), (0, -0.8, -0.6)))
@@ -40,7 +47,7 @@ def positions(scene):
 
 
 def probe(scene, points, basis, non_negative, rays, roughness, normal, view):
-    args = [BAKER, "probe", scene[0]] + scene[1] + ["--basis", basis, "--signal", "radiance", "--rays", str(rays), "--bounces", "1",
+    args = [BAKER, "probe", scene[0]] + scene[1] + ["--basis", basis[1]] + basis[2] + ["--signal", "radiance", "--rays", str(rays), "--bounces", "1",
             "--roughness", str(roughness), "--view", text(view), "--normal", text(normal), "--json"]
     args += [a for p in points for a in ("--at", text(p))]
     if non_negative:
@@ -80,12 +87,43 @@ def cell(x):
     return "—" if x is None else "{:.1f} %".format(100 * x)
 
 
+def spread(values):
+    mean = sum(values) / len(values)
+    sd = math.sqrt(sum((v - mean) ** 2 for v in values) / (len(values) - 1)) if len(values) > 1 else 0.0
+    return "{:.1f} ± {:.1f} %".format(100 * mean, 100 * sd)
+
+
+def environment_section(bases):
+    if not IMAGES:
+        return ["## Light probes and HDR environments", "", "Left out: they are in ../shared/data.", ""]
+    reports = {}
+    for basis in bases:
+        reports[basis[0]] = [json.loads(subprocess.run([BAKER, "env", image, "--basis", basis[1]] + basis[2] + ["--signal", "radiance", "--json"],
+                                                       check=True, capture_output=True, text=True).stdout) for image in IMAGES]
+    first = next(iter(reports.values()))[0]
+    lines = ["## Light probes and HDR environments", "",
+             "Each image's radiance fitted in the basis at {} × {} texels (as `baker bases --signal radiance` fits it),".format(128, 64),
+             "then read at {} (normal, view) pairs (16 normals spread over the sphere, n·v = 1, 0.7, 0.3) against".format(first["frames"]),
+             "the exact integrals over the full image (`baker env IMAGE --basis B --signal radiance --json`).",
+             "Mean ± standard deviation over the {} images: {}.".format(len(IMAGES), ", ".join(os.path.basename(i) for i in IMAGES)), "",
+             "| basis | fit | bytes/probe | " + " | ".join("specular r={}".format(r) for r in first["roughness"]) + " | diffuse |",
+             "|---|---|---|" + "---|" * len(first["roughness"]) + "---|"]
+    for label, runs in reports.items():
+        for fit in runs[0]["fits"]:
+            per = [run["fits"][fit] for run in runs]
+            spec = [spread([p["specular_relative_rmse"][k] for p in per]) for k in range(len(first["roughness"]))]
+            lines.append("| {} | {} | {} | {} | {} |".format(label, fit.replace("_", "-"), per[0]["bytes_per_probe"], " | ".join(spec),
+                                                             spread([p["diffuse_relative_rmse"] for p in per])))
+    return lines + [""]
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--rays", type=int, default=16384)
     parser.add_argument("--basis", action="append", help="only these bases (a quick look; the report lists all)")
     options = parser.parse_args()
-    rays, bases = options.rays, options.basis or BASES
+    rays = options.rays
+    bases = [b for b in BASES if not options.basis or b[0] in options.basis]
     lines = ["# Glossy specular from radiance volumes: error against each probe's own rays", "",
              "Generated by `python3 scripts/specular_report.py --rays {}`; method in".format(rays),
              "[DECODERS.md](../DECODERS.md#glossy-specular). Each scene: 8 probes (a 2 × 2 × 2 lattice at",
@@ -105,13 +143,14 @@ def main():
                   "| basis | fit | bytes/probe | " + " | ".join("specular r={}".format(r) for r in ROUGHNESS) + " | diffuse |",
                   "|---|---|---|" + "---|" * len(ROUGHNESS) + "---|"]
         for basis in bases:
-            for non_negative in ((False, True) if basis in NON_NEGATIVE else (False,)):
+            for non_negative in ((False, True) if basis[1] in NON_NEGATIVE else (False,)):
                 row = measure(scene, points, basis, non_negative, rays)
                 spec = ["{}{}".format(cell(row["specular"][r]), " ({})".format(row["left_out"][r]) if row["left_out"][r] else "")
                         for r in ROUGHNESS]
-                lines.append("| {} | {} | {} | {} | {} |".format(basis, "non-negative" if non_negative else "linear",
+                lines.append("| {} | {} | {} | {} | {} |".format(basis[0], "non-negative" if non_negative else "linear",
                                                                  row.get("bytes", "—"), " | ".join(spec), cell(row["diffuse"])))
         lines.append("")
+    lines += environment_section(bases)
     out = os.path.join(ROOT, "docs", "specular", "report.md")
     os.makedirs(os.path.dirname(out), exist_ok=True)
     with open(out, "w") as f:

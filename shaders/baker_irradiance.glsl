@@ -307,6 +307,126 @@ float bakerSampleVisibilityAdYCoCg(sampler3D textures[9], vec3 uvw, vec3 n) {
   return bakerVisibilityAdYCoCg(t, n);
 }
 
+// ---- Radiance volumes (--signal radiance: "signal" is "radiance" in baker.reconstruction). The
+// textures are packed as above but hold the incoming radiance L(ω) in the same functions, so
+// bakerIrradianceX(t, d) above, read at a direction d, is the radiance arriving from d. Irradiance
+// is each function's diffuse response K_i(n) = ∫ f_i(ω) max(0, n·ω) dω: SH bands scaled by the
+// clamped cosine's A_l = π, 2π/3, π/4; a lobe max(0, a·ω)² gives π(1 + x)²/8 and max(0, a·ω)⁴
+// π(1/16 + x/6 + x²/8 − x⁴/48), x = a·n (the "diffuse_response" series of the file, summed).
+// sg-N and the piecewise Ambient Dice variants have no radiance functions here (the C++ header
+// decodes sg-N).
+
+const float BAKER_PI = 3.14159265358979;
+
+vec3 bakerIrradianceFromRadianceShL1(vec4 t[3], vec3 n) {
+  vec4 y = bakerShL1Basis(n) * vec4(BAKER_PI, vec3(2.0 * BAKER_PI / 3.0));
+  return vec3(dot(t[0], y), dot(t[1], y), dot(t[2], y));
+}
+
+vec3 bakerIrradianceFromRadianceShL2(vec4 t[7], vec3 n) {
+  float y[9];
+  bakerShL2Basis(n, y);
+  vec3 e = vec3(0.0);
+  for (int i = 0; i < 9; ++i) e += y[i] * (i == 0 ? BAKER_PI : i < 4 ? 2.0 * BAKER_PI / 3.0 : BAKER_PI / 4.0) * BAKER_RGB(t, 9, i);
+  return e;
+}
+
+// The response of the lobe cos2·max(0, a·ω)² + cos4·max(0, a·ω)⁴ at x = a·n.
+float bakerLobeResponse(float x, vec2 lobe) {
+  float x2 = x * x;
+  return BAKER_PI * (lobe.x * (1.0 + x) * (1.0 + x) / 8.0 + lobe.y * (1.0 / 16.0 + x / 6.0 + x2 / 8.0 - x2 * x2 / 48.0));
+}
+
+// Every lobe responds where it faces away too (only the one at a·n = −1 gives 0), so all 6 count.
+vec3 bakerIrradianceFromRadianceAmbientCube(vec4 t[5], vec3 n) {
+  vec3 e = vec3(0.0);
+  for (int lobe = 0; lobe < 6; ++lobe) {
+    float x = (lobe % 2 == 0 ? 1.0 : -1.0) * n[lobe / 2];
+    e += bakerLobeResponse(x, vec2(1.0, 0.0)) * BAKER_RGB(t, 6, lobe);
+  }
+  return e;
+}
+
+vec3 bakerIrradianceFromRadianceAdLobes(vec4 t[9], vec3 n, vec2 lobe) {
+  vec3 e = vec3(0.0);
+  for (int i = 0; i < 12; ++i) e += bakerLobeResponse(dot(BAKER_ICOSAHEDRON[i], n), lobe) * BAKER_RGB(t, 12, i);
+  return e;
+}
+
+vec3 bakerIrradianceFromRadianceAdCos2(vec4 t[9], vec3 n) { return bakerIrradianceFromRadianceAdLobes(t, n, BAKER_AD_COS2_LOBE); }
+vec3 bakerIrradianceFromRadianceAdSrbf(vec4 t[9], vec3 n) { return bakerIrradianceFromRadianceAdLobes(t, n, BAKER_AD_SRBF_LOBE); }
+
+// Sky visibility (1/π)∫V(ω) max(0, n·ω) dω from V(ω) stored in channel 0's functions.
+float bakerVisibilityFromRadianceShL1(vec4 t[1], vec3 n) {
+  return dot(t[0], bakerShL1Basis(n) * vec4(1.0, vec3(2.0 / 3.0)));
+}
+float bakerVisibilityFromRadianceShL2(vec4 t[3], vec3 n) {
+  float y[9];
+  bakerShL2Basis(n, y);
+  float v = 0.0;
+  for (int i = 0; i < 9; ++i) v += y[i] * (i == 0 ? 1.0 : i < 4 ? 2.0 / 3.0 : 0.25) * t[i >> 2][i & 3];
+  return v;
+}
+float bakerVisibilityFromRadianceAmbientCube(vec4 t[2], vec3 n) {
+  float v = 0.0;
+  for (int lobe = 0; lobe < 6; ++lobe)
+    v += bakerLobeResponse((lobe % 2 == 0 ? 1.0 : -1.0) * n[lobe / 2], vec2(1.0, 0.0)) * t[lobe >> 2][lobe & 3];
+  return v / BAKER_PI;
+}
+float bakerVisibilityFromRadianceAdLobes(vec4 t[3], vec3 n, vec2 lobe) {
+  float v = 0.0;
+  for (int i = 0; i < 12; ++i) v += bakerLobeResponse(dot(BAKER_ICOSAHEDRON[i], n), lobe) * t[i >> 2][i & 3];
+  return v / BAKER_PI;
+}
+float bakerVisibilityFromRadianceAdCos2(vec4 t[3], vec3 n) { return bakerVisibilityFromRadianceAdLobes(t, n, BAKER_AD_COS2_LOBE); }
+float bakerVisibilityFromRadianceAdSrbf(vec4 t[3], vec3 n) { return bakerVisibilityFromRadianceAdLobes(t, n, BAKER_AD_SRBF_LOBE); }
+
+// Glossy specular (docs/DECODERS.md "Glossy specular"): S = (1 − w)·L(r) + w·E(n)/π for a GGX
+// lobe with F0 = 1, α = roughness². `blend` is "baker.specular" as a 16 × 16 two-channel float
+// texture (R = diffuse_weight, G = albedo; row j = roughness j/15, column k = n·v k/15), read here
+// with texelFetch and blended exactly as the library does, so any filter mode works. The result
+// is (S, albedo): the reflected radiance is albedo·F·S.
+struct BakerSpecularRead {
+  vec3 reflection;  // r = 2(n·v)n − v for n·v clamped to [1e-4, 1] in the plane of n and v
+  vec2 blend;       // (w, albedo)
+};
+
+BakerSpecularRead bakerSpecularRead(vec3 n, vec3 v, float roughness, sampler2D blend) {
+  float nv = dot(n, v), cosView = clamp(nv, 1e-4, 1.0);
+  vec3 along = v - nv * n;
+  // v along n: any tangent (as the library's, from Eigen's unitOrthogonal).
+  if (length(along) < 1e-6) along = abs(n.x) > 1e-6 || abs(n.y) > 1e-6 ? vec3(-n.y, n.x, 0.0) : vec3(0.0, -n.z, n.y);
+  vec3 view = cosView * n + sqrt(1.0 - cosView * cosView) * normalize(along);
+  vec2 grid = vec2(clamp(roughness, 0.0, 1.0), cosView) * 15.0;
+  ivec2 low = min(ivec2(grid), ivec2(14));
+  vec2 f = grid - vec2(low);
+  vec2 w00 = texelFetch(blend, ivec2(low.y, low.x), 0).rg, w01 = texelFetch(blend, ivec2(low.y + 1, low.x), 0).rg;
+  vec2 w10 = texelFetch(blend, ivec2(low.y, low.x + 1), 0).rg, w11 = texelFetch(blend, ivec2(low.y + 1, low.x + 1), 0).rg;
+  return BakerSpecularRead(2.0 * cosView * n - view, mix(mix(w00, w01, f.y), mix(w10, w11, f.y), f.x));
+}
+
+vec4 bakerSpecularShL1(vec4 t[3], vec3 n, vec3 v, float roughness, sampler2D blend) {
+  BakerSpecularRead r = bakerSpecularRead(n, v, roughness, blend);
+  return vec4(mix(bakerIrradianceShL1(t, r.reflection), bakerIrradianceFromRadianceShL1(t, n) / BAKER_PI, r.blend.x), r.blend.y);
+}
+vec4 bakerSpecularShL2(vec4 t[7], vec3 n, vec3 v, float roughness, sampler2D blend) {
+  BakerSpecularRead r = bakerSpecularRead(n, v, roughness, blend);
+  return vec4(mix(bakerIrradianceShL2(t, r.reflection), bakerIrradianceFromRadianceShL2(t, n) / BAKER_PI, r.blend.x), r.blend.y);
+}
+vec4 bakerSpecularAmbientCube(vec4 t[5], vec3 n, vec3 v, float roughness, sampler2D blend) {
+  BakerSpecularRead r = bakerSpecularRead(n, v, roughness, blend);
+  return vec4(mix(bakerIrradianceAmbientCube(t, r.reflection), bakerIrradianceFromRadianceAmbientCube(t, n) / BAKER_PI, r.blend.x),
+              r.blend.y);
+}
+vec4 bakerSpecularAdCos2(vec4 t[9], vec3 n, vec3 v, float roughness, sampler2D blend) {
+  BakerSpecularRead r = bakerSpecularRead(n, v, roughness, blend);
+  return vec4(mix(bakerIrradianceAdCos2(t, r.reflection), bakerIrradianceFromRadianceAdCos2(t, n) / BAKER_PI, r.blend.x), r.blend.y);
+}
+vec4 bakerSpecularAdSrbf(vec4 t[9], vec3 n, vec3 v, float roughness, sampler2D blend) {
+  BakerSpecularRead r = bakerSpecularRead(n, v, roughness, blend);
+  return vec4(mix(bakerIrradianceAdSrbf(t, r.reflection), bakerIrradianceFromRadianceAdSrbf(t, n) / BAKER_PI, r.blend.x), r.blend.y);
+}
+
 // ---- Adaptive volumes (docs/DECODERS.md "Adaptive volumes on the GPU"); include
 // baker_adaptive.glsl first. The pool's textures are packed as above, per probe of a pool slot:
 // an atlas of slots, slot s at texel 8·(s mod S, (s / S) mod S, s / S²) + the probe's place in

@@ -27,6 +27,9 @@ layout(location = 8) uniform float levelSpacing[BAKER_MAX_LEVELS];
 layout(location = 12) uniform ivec3 levelDims[BAKER_MAX_LEVELS];
 layout(location = 16) uniform int levelBrickZ[BAKER_MAX_LEVELS];
 layout(location = 20) uniform int slotsAcross;
+layout(binding = 70) uniform sampler2D specularBlend;
+layout(location = 21) uniform vec3 view;
+layout(location = 22) uniform float roughness;
 
 layout(location = 0) in vec3 worldPosition;
 layout(location = 1) in vec3 normal;
@@ -47,5 +50,24 @@ void main() {
       bakerAdaptiveCorners(worldPosition, indirection, levelCount, levelOrigin, levelSpacing, levelDims, levelBrickZ);
   BAKER_ADAPTIVE_FETCH(pool, 15, corners, slotsAcross, adaptive);
   e += bakerIrradianceAdYCoCg(adaptive, n);
-  color = vec4(e, v);
+
+  // Radiance volumes: the same packing, read through the radiance functions.
+  BAKER_FETCH(shL1, 3, uvw, l1);
+  BAKER_FETCH(shL2, 7, uvw, l2);
+  BAKER_FETCH(ambientCube, 5, uvw, cube);
+  BAKER_FETCH(ambientDice, 9, uvw, dice);
+  BAKER_FETCH(visibility1, 1, uvw, v1);
+  BAKER_FETCH(visibility2, 2, uvw, v2);
+  BAKER_FETCH(visibility3, 3, uvw, v3);
+  e += bakerIrradianceFromRadianceShL1(l1, n) + bakerIrradianceFromRadianceShL2(l2, n) +
+       bakerIrradianceFromRadianceAmbientCube(cube, n) + bakerIrradianceFromRadianceAdCos2(dice, n) +
+       bakerIrradianceFromRadianceAdSrbf(dice, n);
+  v += bakerVisibilityFromRadianceShL1(v1, n) + bakerVisibilityFromRadianceShL2(v3, n) +
+       bakerVisibilityFromRadianceAmbientCube(v2, n) + bakerVisibilityFromRadianceAdCos2(v3, n) +
+       bakerVisibilityFromRadianceAdSrbf(v3, n);
+  vec4 s = bakerSpecularShL1(l1, n, view, roughness, specularBlend) + bakerSpecularShL2(l2, n, view, roughness, specularBlend) +
+           bakerSpecularAmbientCube(cube, n, view, roughness, specularBlend) +
+           bakerSpecularAdCos2(dice, n, view, roughness, specularBlend) +
+           bakerSpecularAdSrbf(dice, n, view, roughness, specularBlend);
+  color = vec4(e + s.rgb * s.a, v);
 }

@@ -3,6 +3,8 @@
 // header to other languages (decoders/baker_irradiance.js) are checked against.
 // `decoder_samples adaptive`: an adaptive volume of random probes instead (three levels, each
 // holding some of its bricks) and what the header samples at points in and around it.
+// `decoder_samples radiance`: per basis, radiance volumes' coefficients and what the library
+// (formats/VolumeReconstruction) reads from them: radiance, irradiance, visibility, specular.
 #include <algorithm>
 #include <array>
 #include <cstdio>
@@ -13,8 +15,10 @@
 #include <vector>
 
 #include "basis/BasisRegistry.h"
+#include "basis/SpecularBlend.h"
 #include "decoders/baker_irradiance.h"
 #include "formats/ReconstructionData.h"
+#include "formats/VolumeReconstruction.h"
 
 namespace {
 
@@ -71,6 +75,44 @@ json samplesOf(const std::string& name, std::mt19937& rng) {
                      {"visibility", decoder.visibility(c.data(), {d[0], d[1], d[2]})}});
   }
   entry["coefficients_per_probe"] = decoder.coefficientsPerProbe();
+  entry["cases"] = cases;
+  return entry;
+}
+
+json vec(const Eigen::Vector3f& v) { return {v.x(), v.y(), v.z()}; }
+
+// What a radiance volume's reader needs of its metadata, and the library's readings of random
+// probes at random normals, views and roughness (the specular table only for bases it decodes).
+json radianceSamplesOf(const std::string& name, std::mt19937& rng) {
+  const baker::VolumeReconstruction library(baker::makeBasis(name), baker::StoredSignal::Radiance);
+  const json set = baker::reconstructionData(library.basis(), baker::StoredSignal::Radiance)["function_sets"][0];
+  json entry = {{"basis", name}, {"diffuse_response", set["diffuse_response"]}};
+  if (set["type"] == "spherical-gaussians") {
+    entry["sharpness"] = set["sharpness"];
+    entry["axes"] = set["axes"];
+  }
+  if (set["diffuse_response"].is_null()) return entry;
+  const json blend = baker::specularBlendOf(library.basis())->describe();
+  entry["specular"] = {{"diffuse_weight", blend["diffuse_weight"]}, {"albedo", blend["albedo"]}};
+  std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+  std::normal_distribution<double> gaussian;
+  const auto direction = [&] { return Eigen::Vector3d(gaussian(rng), gaussian(rng), gaussian(rng)).normalized(); };
+  json cases = json::array();
+  for (int n = 0; n < 40; ++n) {
+    std::vector<float> c(std::size_t(library.basis().totalCoefficients()));
+    for (float& x : c) x = uniform(rng);
+    const Eigen::Vector3d normal = direction(), view = n == 0 ? normal : direction();
+    const double roughness = n % 5 == 0 ? double(n % 2) : uniform(rng);
+    const baker::VolumeReconstruction::Specular s = library.specular(c.data(), normal, view, roughness);
+    cases.push_back({{"coefficients", c},
+                     {"normal", {normal.x(), normal.y(), normal.z()}},
+                     {"view", {view.x(), view.y(), view.z()}},
+                     {"roughness", roughness},
+                     {"radiance", vec(library.radiance(c.data(), normal))},
+                     {"irradiance", vec(library.irradiance(c.data(), normal))},
+                     {"visibility", library.skyVisibility(c.data(), normal)},
+                     {"specular", {{"value", vec(s.value)}, {"albedo", s.albedo}, {"diffuse_weight", s.diffuseWeight}}}});
+  }
   entry["cases"] = cases;
   return entry;
 }
@@ -186,6 +228,12 @@ int main(int argc, char** argv) {
   if (argc > 1 && std::string(argv[1]) == "adaptive") {
     json all = json::array();
     for (const char* name : {"sh-l2", "ad-ycocg"}) all.push_back(adaptiveSamples(name, rng));
+    std::cout << all.dump() << "\n";
+    return 0;
+  }
+  if (argc > 1 && std::string(argv[1]) == "radiance") {
+    json all = json::array();
+    for (const std::string& name : baker::basisNames()) all.push_back(radianceSamplesOf(name, rng));
     std::cout << all.dump() << "\n";
     return 0;
   }

@@ -31,6 +31,8 @@ class FittedSignal {
   // Bytes one probe stores at 32-bit floats: every channel's coefficients, or only the first
   // function set's for a scalar signal.
   int bytesPerProbe() const { return 4 * storedCoefficients_; }
+  // One probe's coefficients in the basis's layout (a scalar signal's in channel 0 only).
+  const std::vector<float>& coefficients() const { return coefficients_; }
 
  private:
   const Basis& basis_;

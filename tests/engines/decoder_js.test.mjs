@@ -2,7 +2,9 @@
 // irradiance and visibility the header decodes from random coefficients (decoder_samples) agree
 // within 1e-5 of the coefficients' magnitude (≤ 1). Then adaptive volumes (decoder_samples
 // adaptive): finestLevelNeighbourhood picks the header's level and weights at every point, and E
-// and visibility blended there agree within 1e-5 of max(1, |E|).
+// and visibility blended there agree within 1e-5 of max(1, |E|). Then radiance volumes
+// (decoder_samples radiance): radiance, irradiance, visibility and specular against the library's
+// readings within 1e-5 of max(1, |value|), and the piecewise Ambient Dice variants refused.
 // argv: node decoder_js.test.mjs DECODER_SAMPLES SOURCE_DIR
 import { execFileSync } from 'node:child_process';
 import path from 'node:path';
@@ -11,7 +13,7 @@ import { pathToFileURL } from 'node:url';
 const [ samplesBinary, sourceDir ] = process.argv.slice( 2 );
 const { BasisDecoder, blendProbes, finestLevelNeighbourhood } = await import( pathToFileURL( path.join( sourceDir, 'decoders/baker_irradiance.js' ) ) );
 const samples = ( ...args ) => JSON.parse( execFileSync( samplesBinary, args, { encoding: 'utf8', maxBuffer: 1 << 30 } ) );
-const bases = samples(), adaptive = samples( 'adaptive' );
+const bases = samples(), adaptive = samples( 'adaptive' ), radiance = samples( 'radiance' );
 let checks = 0, failures = 0, worst = 0;
 for ( const entry of bases ) {
 	const decoder = new BasisDecoder( entry.basis, entry.sharpness ?? 0 );
@@ -78,6 +80,33 @@ for ( const entry of adaptive ) {
 	}
 }
 console.log( `${ adaptive.length } adaptive volumes: the header's level and weights at every point; largest difference in E ${ worstAdaptive.toExponential( 2 ) } of max(1, |E|)` );
+let worstRadiance = 0, decodedRadiance = 0;
+for ( const entry of radiance ) {
+	const decoder = new BasisDecoder( entry.basis, entry.sharpness ?? 0 );
+	if ( entry.axes ) decoder.setLobeAxes( entry.axes );
+	if ( entry.diffuse_response?.type === 'legendre' ) decoder.setDiffuseResponse( entry.diffuse_response.coefficients );
+	++ checks;
+	if ( decoder.decodesRadiance !== ( entry.diffuse_response !== null ) ) {
+		++ failures;
+		console.error( `FAIL: radiance ${ entry.basis }: decodesRadiance ${ decoder.decodesRadiance }, the file's response ${ JSON.stringify( entry.diffuse_response ) }` );
+		continue;
+	}
+	if ( ! decoder.decodesRadiance ) continue;
+	++ decodedRadiance;
+	for ( const c of entry.cases ) {
+		const s = decoder.specular( c.coefficients, c.normal, c.view, c.roughness, entry.specular );
+		const got = [ ...decoder.radiance( c.coefficients, c.normal ), ...decoder.irradianceFromRadiance( c.coefficients, c.normal ),
+			decoder.visibilityFromRadiance( c.coefficients, c.normal ), ...s.value, s.albedo, s.diffuseWeight ];
+		const expected = [ ...c.radiance, ...c.irradiance, c.visibility, ...c.specular.value, c.specular.albedo, c.specular.diffuse_weight ];
+		for ( let k = 0; k < got.length; ++ k ) {
+			const error = Math.abs( got[ k ] - expected[ k ] ) / Math.max( 1, Math.abs( expected[ k ] ) );
+			worstRadiance = Math.max( worstRadiance, error );
+			++ checks;
+			if ( ! ( error <= 1e-5 ) && ++ failures <= 20 ) console.error( `FAIL: radiance ${ entry.basis } at ${ c.normal }: value ${ k } ${ got[ k ] }, library ${ expected[ k ] }` );
+		}
+	}
+}
+console.log( `${ decodedRadiance } of ${ radiance.length } bases decode radiance; largest difference from the library ${ worstRadiance.toExponential( 2 ) } of max(1, |value|)` );
 console.log( `${ bases.length } bases; largest difference from the header ${ worst.toExponential( 2 ) }` );
 console.log( `decoder_js: ${ checks - failures } of ${ checks } checks passed` );
-process.exit( failures === 0 && bases.length > 0 ? 0 : 1 );
+process.exit( failures === 0 && bases.length > 0 && decodedRadiance > 0 ? 0 : 1 );
