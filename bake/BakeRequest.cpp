@@ -43,6 +43,10 @@ void validateBakeRequest(const BakeRequest& r) {
                                  "the basis directly and has no SH bands to fade");
   requireKnownEffects(r.turnedOff);
   const std::unique_ptr<Basis> basis = makeBasis(r.basis, r.sgSharpness);
+  if (basis->hemisphere() && signal != StoredSignal::Radiance)
+    throw SettingError("signal", fmt::format("must be radiance for {}: it holds the radiance over one hemisphere, "
+                                             "from which no irradiance for every normal follows",
+                                             r.basis));
   if (r.nonNegative && !admitsNonNegativeFit(*basis))
     throw SettingError("non_negative",
                        fmt::format("does not apply to {}: its functions change sign, so coefficients >= 0 do not make "

@@ -224,19 +224,20 @@ void ProbeBaker::fitRoundsByLeastSquares(const Eigen::MatrixXd& sampledGram, Eig
 
 void ProbeBaker::buildRadianceOperators(const std::vector<DirectionSet>& sets) {
   std::vector<const SphericalFunctions*> groupFunctions;
-  for (const ChannelGroup& group : groups_) groupFunctions.push_back(&basis_.functions(group.firstChannel));
+  for (const ChannelGroup& group : groups_) groupFunctions.push_back(&basis_.fitFunctions(group.firstChannel));
   ownFunctions_ = StackedFunctions(groupFunctions);
   punctualExpansion_ = &ownFunctions_;
   directExpansion_ = &ownFunctions_;
   for (std::size_t g = 0; g < groups_.size(); ++g) {
     ChannelGroup& group = groups_[g];
-    const GramOperators ops(basis_.functions(group.firstChannel), basis_.name());
+    const SphericalFunctions& fitted = basis_.fitFunctions(group.firstChannel);
+    const GramOperators ops(fitted, basis_.name());
     condition_ = std::max(condition_, ops.conditionNumber());
     // Weighted least squares of each rotation's samples, which reproduces any radiance the
     // functions can hold (a constant sky, for most bases) exactly, where the quadrature's moments
     // G⁻¹BᵀW would carry its error. Lobes are not rotation-invariant: each rotation is checked.
     for (const DirectionSet& set : sets) {
-      const SampledFit fit(basis_.functions(group.firstChannel), set, basis_.name() + " (radiance fit of the samples)");
+      const SampledFit fit(fitted, set, basis_.name() + " (radiance fit of the samples)");
       condition_ = std::max(condition_, fit.conditionNumber());
       group.fromSamples.push_back(fit.matrix().cast<float>());
     }

@@ -1,6 +1,7 @@
 #pragma once
 #include <Eigen/Core>
 #include <map>
+#include <optional>
 #include <string>
 
 #include "basis/SphericalFunctions.h"
@@ -28,6 +29,12 @@ class Basis {
   virtual std::map<std::string, double> parameters() const { return {}; }
   virtual ColorSpace colorSpace() const { return ColorSpace::Rgb; }
   virtual const SphericalFunctions& functions(int channel) const = 0;
+  // What a bake fits the samples with, when it is not functions(): a hemispherical basis fits
+  // its functions cut off at the horizon, and is read with them whole.
+  virtual const SphericalFunctions& fitFunctions(int channel) const { return functions(channel); }
+  // The axis of the hemisphere a basis holds radiance over, when it holds only that: it is baked
+  // with --signal radiance only, and read for normals about that axis.
+  virtual std::optional<Eigen::Vector3d> hemisphere() const { return std::nullopt; }
   // How many stored coefficients (all channels) reconstructing one direction reads.
   virtual int coefficientsPerLookup() const = 0;
 

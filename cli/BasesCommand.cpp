@@ -101,7 +101,12 @@ int printEvaluation(SignalKind kind, SignalMetric metric, const std::vector<std:
   if (names.empty()) names = basisNames();
   std::vector<std::string> unique;
   for (const std::string& name : names) {
-    makeBasis(name);  // an unknown name is refused before any work
+    // An unknown name is refused before any work; so is a basis that holds one hemisphere, which
+    // these whole-sphere scores would misjudge (`baker env --signal radiance` reads it).
+    if (makeBasis(name)->hemisphere())
+      throw InputError(fmt::format("--basis {}: holds radiance over one hemisphere only; score it with baker env "
+                                   "--signal radiance, which reads it at the surfaces it serves",
+                                   name));
     if (std::find(unique.begin(), unique.end(), name) == unique.end()) unique.push_back(name);
   }
   names = unique;

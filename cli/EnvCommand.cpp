@@ -73,11 +73,14 @@ std::vector<std::string> writeImages(const std::string& dir, const LatLongEnviro
 // The roughness the radiance report reads specular at (issue 28's).
 const std::vector<double> kRoughness = {0.1, 0.3, 0.6, 1.0};
 
-int reportRadiance(const Basis& basis, const std::string& probePath, bool json) {
+int reportRadiance(const Basis& basis, const std::string& probePath, bool upward, bool json) {
   const auto start = std::chrono::steady_clock::now();
   const LatLongEnvironment env = LatLongEnvironment::load(probePath);
-  const std::vector<EnvironmentSpecularScore> scores = scoreSpecularOnEnvironment(basis, env, probePath, kRoughness);
-  const std::size_t frames = specularFrames().size();
+  // A hemispherical basis is read only where it holds the light: surfaces facing its axis.
+  const std::optional<Eigen::Vector3d> up = basis.hemisphere() ? basis.hemisphere() : upward ? std::optional<Eigen::Vector3d>(Eigen::Vector3d::UnitY()) : std::nullopt;
+  const std::vector<SpecularFrame> chosen = up ? upwardFrames(*up) : specularFrames();
+  const std::vector<EnvironmentSpecularScore> scores = scoreSpecularOnEnvironment(basis, env, probePath, kRoughness, chosen);
+  const std::size_t frames = chosen.size();
   if (json) {
     nlohmann::json fits = nlohmann::json::object();
     for (const EnvironmentSpecularScore& s : scores)
@@ -91,6 +94,7 @@ int reportRadiance(const Basis& basis, const std::string& probePath, bool json) 
                              {"signal", "radiance"},
                              {"coefficients", basis.totalCoefficients()},
                              {"frames", frames},
+                             {"normals", up ? "up" : "sphere"},
                              {"roughness", kRoughness},
                              {"reference", "exact integrals over all texels of the image"},
                              {"fits", fits},
@@ -102,7 +106,8 @@ int reportRadiance(const Basis& basis, const std::string& probePath, bool json) 
   std::cout << fmt::format("probe   {} ({} x {} texels)\n", probePath, env.width(), env.height());
   std::cout << fmt::format("basis   {} ({} coefficients), radiance fitted at {} x {} texels\n", basis.name(),
                            basis.totalCoefficients(), kSignalWidth, kSignalWidth / 2);
-  std::cout << fmt::format("relative RMSE against the exact integrals over the image, {} normal/view pairs:\n", frames);
+  std::cout << fmt::format("relative RMSE against the exact integrals over the image, {} normal/view pairs ({}):\n",
+                           frames, up ? "normal up" : "normals over the sphere");
   std::cout << fmt::format("  {:<13} {:>7} {:>9}", "fit", "B/probe", "diffuse");
   for (double r : kRoughness) std::cout << fmt::format(" {:>9}", fmt::format("r = {}", r));
   std::cout << "\n";
@@ -201,13 +206,21 @@ int runEnvCommand(int argc, char** argv) {
                  "report diffuse and GGX specular (roughness 0.1, 0.3, 0.6, 1) read from it against the exact "
                  "integrals over the image (docs/specular/report.md)")
       ->check(CLI::IsMember({"irradiance", "radiance"}));
+  bool upward = false;
+  app.add_flag("--upward", upward,
+               "with --signal radiance: read at upward-facing surfaces only (normal +Y), as a hemispherical basis "
+               "(ad-hemi9) always is");
 
   return runGuarded("baker env", app, argc, argv, [&]() {
     const std::unique_ptr<Basis> basis =
         makeBasis(basisName, app.count("--sg-sharpness") ? std::optional<double>(sharpness) : std::nullopt);
+    if (upward && signal != "radiance") throw InputError("--upward reads radiance fits: add --signal radiance");
+    if (basis->hemisphere() && signal != "radiance")
+      throw InputError(fmt::format("--basis {}: holds radiance over one hemisphere, not irradiance: add --signal radiance",
+                                   basis->name()));
     if (signal == "radiance") {
       if (!outDir.empty()) throw InputError("--out-dir writes irradiance images: not with --signal radiance");
-      return reportRadiance(*basis, probePath, json);
+      return reportRadiance(*basis, probePath, upward, json);
     }
     return reportIrradiance(*basis, probePath, outDir, json);
   });

@@ -130,6 +130,7 @@ enum class FunctionSetKind {
   IcosahedronBezier,   // 36: per vertex value, ∂t, ∂b; a cubic Bézier patch per triangle
   CubeLobes,           // 6 cos² lobes on ±x, ±y, ±z
   SphericalGaussians,  // N lobes exp(λ(μ·n − 1))
+  HemisphereLobes,     // ad-hemi9: 9 lobes cos2·c² + cos4·c⁴, c = max(0, axis·n), on listed axes
 };
 
 enum class Barycentrics { Spherical, Flat };
@@ -143,7 +144,7 @@ struct FunctionSet {
   int shOrder = 0;
   Barycentrics barycentrics = Barycentrics::Spherical;  // linear and Bézier
   double cos2 = 0.0, cos4 = 0.0;                        // lobes: cos2·c² + cos4·c⁴, c = max(0, v̂·n)
-  int lobeCount = 0;                                    // spherical Gaussians
+  int lobeCount = 0;                                    // spherical Gaussians, hemisphere lobes
   double sharpness = 0.0;
   double axes[3 * kMaxLobes] = {};
   // Radiance: the lobes' diffuse response h(x) = Σ_l response[l] P_l(x), x = axis·n, for the
@@ -158,7 +159,8 @@ struct FunctionSet {
       case FunctionSetKind::IcosahedronLobes: return 12;
       case FunctionSetKind::IcosahedronBezier: return 36;
       case FunctionSetKind::CubeLobes: return 6;
-      case FunctionSetKind::SphericalGaussians: return lobeCount;
+      case FunctionSetKind::SphericalGaussians:
+      case FunctionSetKind::HemisphereLobes: return lobeCount;
     }
     return 0;
   }
@@ -331,6 +333,14 @@ inline void expand(const FunctionSet& set, const float* coefficients, int arrays
         for (int k = 0; k < arrays; ++k) sums[k] += lobe * coefficients[k * count + i];
       }
       return;
+    case FunctionSetKind::HemisphereLobes:
+      for (int i = 0; i < set.lobeCount; ++i) {
+        const double c = dot(Vec3{set.axes[3 * i], set.axes[3 * i + 1], set.axes[3 * i + 2]}, d);
+        if (c <= 0.0) continue;
+        const double lobe = c * c * (set.cos2 + set.cos4 * c * c);
+        for (int k = 0; k < arrays; ++k) sums[k] += lobe * coefficients[k * count + i];
+      }
+      return;
   }
 }
 
@@ -347,7 +357,7 @@ inline bool expandIrradianceFromRadiance(const FunctionSet& set, const float* co
     return true;
   }
   const bool radial = set.kind == FunctionSetKind::IcosahedronLobes || set.kind == FunctionSetKind::CubeLobes ||
-                      set.kind == FunctionSetKind::SphericalGaussians;
+                      set.kind == FunctionSetKind::SphericalGaussians || set.kind == FunctionSetKind::HemisphereLobes;
   if (!radial || set.responseTerms <= 0) return false;
   for (int i = 0; i < count; ++i) {
     Vec3 axis;
@@ -485,7 +495,8 @@ class BasisDecoder {
       case FunctionSetKind::SphericalHarmonics: return true;
       case FunctionSetKind::IcosahedronLobes:
       case FunctionSetKind::CubeLobes:
-      case FunctionSetKind::SphericalGaussians: return primary_.responseTerms > 0;
+      case FunctionSetKind::SphericalGaussians:
+      case FunctionSetKind::HemisphereLobes: return primary_.responseTerms > 0;
       default: return false;
     }
   }
@@ -564,14 +575,21 @@ class BasisDecoder {
       const double w2 = paper ? 0.7 : 1.0, w4 = paper ? 0.3 : 0.0;
       const double scale = 1.0 / (2.0 * w2 + 1.2 * w4);
       f.kind = FunctionSetKind::IcosahedronLobes;
-      f.cos2 = scale * w2;
-      f.cos4 = scale * w4;
-      // Responses of max(0, t)² and max(0, t)⁴ (docs/DECODERS.md): π(1 + x)²/8 and
-      // π(1/16 + x/6 + x²/8 − x⁴/48), as Legendre series.
-      const double square[5] = {kPi / 6.0, kPi / 4.0, kPi / 12.0, 0.0, 0.0};
-      const double fourth[5] = {kPi / 10.0, kPi / 6.0, kPi / 14.0, 0.0, -kPi / 210.0};
-      f.responseTerms = 5;
-      for (int l = 0; l < 5; ++l) f.response[l] = f.cos2 * square[l] + f.cos4 * fourth[l];
+      setClampedLobe(f, scale * w2, scale * w4);
+    } else if (std::strcmp(name, "ad-hemi9") == 0) {
+      // ad-srbf's lobe on the icosahedron turned so that the face centre (1, 1, 1)/√3 points
+      // along +Y (about (−1, 0, 1)/√2 through arccos(1/√3)), keeping the 9 vertices with y > −1/2.
+      f.kind = FunctionSetKind::HemisphereLobes;
+      setClampedLobe(f, 0.7 / 1.76, 0.3 / 1.76);
+      const double c = 1.0 / std::sqrt(3.0), s = std::sqrt(2.0 / 3.0);
+      const Vec3 k{-std::sqrt(0.5), 0.0, std::sqrt(0.5)};
+      for (int i = 0; i < 12; ++i) {
+        const Vec3 v = icosahedronVertex(i);
+        const Vec3 turned = c * v + s * cross(k, v) + ((1.0 - c) * dot(k, v)) * k;
+        if (turned.y <= -0.5) continue;
+        f.axes[3 * f.lobeCount] = turned.x, f.axes[3 * f.lobeCount + 1] = turned.y, f.axes[3 * f.lobeCount + 2] = turned.z;
+        f.lobeCount += 1;
+      }
     } else if (std::strcmp(name, "ad-rgb") == 0 || std::strcmp(name, "ad-rgb-flat") == 0) {
       f.kind = FunctionSetKind::IcosahedronBezier;
       f.barycentrics = std::strcmp(name, "ad-rgb") == 0 ? Barycentrics::Spherical : Barycentrics::Flat;
@@ -590,6 +608,17 @@ class BasisDecoder {
       return false;
     }
     return true;
+  }
+
+  // cos2·c² + cos4·c⁴ lobes, with their diffuse response: max(0, t)² and max(0, t)⁴ respond with
+  // π(1 + x)²/8 and π(1/16 + x/6 + x²/8 − x⁴/48) (docs/DECODERS.md), here as Legendre series.
+  static void setClampedLobe(FunctionSet& f, double cos2, double cos4) {
+    const double square[5] = {kPi / 6.0, kPi / 4.0, kPi / 12.0, 0.0, 0.0};
+    const double fourth[5] = {kPi / 10.0, kPi / 6.0, kPi / 14.0, 0.0, -kPi / 210.0};
+    f.cos2 = cos2;
+    f.cos4 = cos4;
+    f.responseTerms = 5;
+    for (int l = 0; l < 5; ++l) f.response[l] = cos2 * square[l] + cos4 * fourth[l];
   }
 
   bool valid_ = false;

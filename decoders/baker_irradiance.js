@@ -131,6 +131,15 @@ function legendreSeries( k, x ) {
 	return sum;
 }
 
+// The function sets whose functions are one profile of the cosine to their own axes.
+const RADIAL = [ 'icosahedron-lobes', 'cube-lobes', 'spherical-gaussians', 'hemisphere-lobes' ];
+
+// Responses of max(0, t)² and max(0, t)⁴: π(1 + x)²/8 and π(1/16 + x/6 + x²/8 − x⁴/48), as Legendre series.
+function clampedLobeResponse( cos2, cos4 ) {
+	const square = [ Math.PI / 6, Math.PI / 4, Math.PI / 12, 0, 0 ], fourth = [ Math.PI / 10, Math.PI / 6, Math.PI / 14, 0, - Math.PI / 210 ];
+	return square.map( ( k, l ) => cos2 * k + cos4 * fourth[ l ] );
+}
+
 const CUBE_AXES = [ [ 1, 0, 0 ], [ - 1, 0, 0 ], [ 0, 1, 0 ], [ 0, - 1, 0 ], [ 0, 0, 1 ], [ 0, 0, - 1 ] ];
 
 // The cubic Bézier patch of one triangle (Ambient Dice §2.3.1): corners are the vertex values,
@@ -174,7 +183,7 @@ function bezierPatch( t, spherical, data, offset ) {
 // A function set: what one colour channel's coefficients are coefficients of.
 export class FunctionSet {
 	constructor( kind, options = {} ) {
-		this.kind = kind; // 'sh', 'icosahedron-linear', 'icosahedron-lobes', 'icosahedron-bezier', 'cube-lobes', 'spherical-gaussians'
+		this.kind = kind; // 'sh', 'icosahedron-linear', 'icosahedron-lobes', 'icosahedron-bezier', 'cube-lobes', 'spherical-gaussians', 'hemisphere-lobes'
 		this.shOrder = options.shOrder ?? 0;
 		this.spherical = options.spherical ?? true; // barycentrics of the linear and Bézier sets
 		this.cos2 = options.cos2 ?? 0;
@@ -220,6 +229,14 @@ export class FunctionSet {
 				for ( let k = 0; k < arrays; ++ k ) sums[ k ] = bezierPatch( t, this.spherical, coefficients, offset + k * count );
 				break;
 			}
+			case 'hemisphere-lobes':
+				for ( let i = 0; i < this.axes.length; ++ i ) {
+					const c = dot( this.axes[ i ], d );
+					if ( c <= 0 ) continue;
+					const lobe = c * c * ( this.cos2 + this.cos4 * c * c );
+					for ( let k = 0; k < arrays; ++ k ) sums[ k ] += lobe * coefficients[ offset + k * count + i ];
+				}
+				break;
 			case 'cube-lobes':
 				for ( let a = 0; a < 3; ++ a ) {
 					const lobe = 2 * a + ( d[ a ] < 0 ? 1 : 0 );
@@ -244,7 +261,7 @@ export class FunctionSet {
 			accumulateSphericalHarmonics( this.shOrder, coefficients, offset, arrays, n, sums, bands );
 			return sums;
 		}
-		if ( ! [ 'icosahedron-lobes', 'cube-lobes', 'spherical-gaussians' ].includes( this.kind ) || this.response.length === 0 ) return null;
+		if ( ! RADIAL.includes( this.kind ) || this.response.length === 0 ) return null;
 		const axes = this.kind === 'icosahedron-lobes' ? VERTICES : this.kind === 'cube-lobes' ? CUBE_AXES : this.axes;
 		for ( let i = 0; i < count; ++ i ) {
 			const response = legendreSeries( this.response, dot( axes[ i ], n ) );
@@ -324,7 +341,7 @@ export class BasisDecoder {
 	// "baker.reconstruction". sg-N needs it; ad-cos2, ad-srbf and ambient-cube have it built in.
 	// False for the other bases.
 	setDiffuseResponse( legendre ) {
-		if ( this.ycocg || ! [ 'icosahedron-lobes', 'cube-lobes', 'spherical-gaussians' ].includes( this.primary.kind ) || legendre.length < 1 ) return false;
+		if ( this.ycocg || ! RADIAL.includes( this.primary.kind ) || legendre.length < 1 ) return false;
 		this.primary.response = Array.from( legendre );
 		return true;
 	}
@@ -376,9 +393,17 @@ export class BasisDecoder {
 			// 1, from Σ max(0, v̂·n)² = 2 and Σ max(0, v̂·n)⁴ = 6/5 over the vertices.
 			const paper = name === 'ad-srbf', w2 = paper ? 0.7 : 1, w4 = paper ? 0.3 : 0;
 			const scale = 1 / ( 2 * w2 + 1.2 * w4 ), cos2 = scale * w2, cos4 = scale * w4;
-			// Responses of max(0, t)² and max(0, t)⁴: π(1 + x)²/8 and π(1/16 + x/6 + x²/8 − x⁴/48).
-			const square = [ Math.PI / 6, Math.PI / 4, Math.PI / 12, 0, 0 ], fourth = [ Math.PI / 10, Math.PI / 6, Math.PI / 14, 0, - Math.PI / 210 ];
-			this.primary = new FunctionSet( 'icosahedron-lobes', { cos2, cos4, response: square.map( ( k, l ) => cos2 * k + cos4 * fourth[ l ] ) } );
+			this.primary = new FunctionSet( 'icosahedron-lobes', { cos2, cos4, response: clampedLobeResponse( cos2, cos4 ) } );
+		} else if ( name === 'ad-hemi9' ) {
+			// ad-srbf's lobe on the icosahedron turned so that the face centre (1, 1, 1)/√3 points
+			// along +Y (about (−1, 0, 1)/√2 through arccos(1/√3)), keeping the 9 vertices with y > −1/2.
+			const c = 1 / Math.sqrt( 3 ), s = Math.sqrt( 2 / 3 ), k = [ - Math.SQRT1_2, 0, Math.SQRT1_2 ];
+			const axes = VERTICES.map( ( v ) => {
+				const kv = cross( k, v ), kd = dot( k, v );
+				return [ 0, 1, 2 ].map( ( a ) => c * v[ a ] + s * kv[ a ] + ( 1 - c ) * kd * k[ a ] );
+			} ).filter( ( a ) => a[ 1 ] > - 0.5 );
+			const cos2 = 0.7 / 1.76, cos4 = 0.3 / 1.76;
+			this.primary = new FunctionSet( 'hemisphere-lobes', { cos2, cos4, axes, response: clampedLobeResponse( cos2, cos4 ) } );
 		} else if ( name === 'ad-rgb' || name === 'ad-rgb-flat' ) {
 			this.primary = new FunctionSet( 'icosahedron-bezier', { spherical: name === 'ad-rgb' } );
 		} else if ( name === 'ad-ycocg' ) {

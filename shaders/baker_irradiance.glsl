@@ -313,8 +313,8 @@ float bakerSampleVisibilityAdYCoCg(sampler3D textures[9], vec3 uvw, vec3 n) {
 // is each function's diffuse response K_i(n) = ∫ f_i(ω) max(0, n·ω) dω: SH bands scaled by the
 // clamped cosine's A_l = π, 2π/3, π/4; a lobe max(0, a·ω)² gives π(1 + x)²/8 and max(0, a·ω)⁴
 // π(1/16 + x/6 + x²/8 − x⁴/48), x = a·n (the "diffuse_response" series of the file, summed).
-// sg-N and the piecewise Ambient Dice variants have no radiance functions here (the C++ header
-// decodes sg-N).
+// ad-hemi9 (radiance only) is read here too: 27 numbers in 7 textures, visibility in 3. sg-N and
+// the piecewise Ambient Dice variants have no radiance functions here (the C++ header decodes sg-N).
 
 const float BAKER_PI = 3.14159265358979;
 
@@ -351,6 +351,37 @@ vec3 bakerIrradianceFromRadianceAdLobes(vec4 t[9], vec3 n, vec2 lobe) {
   vec3 e = vec3(0.0);
   for (int i = 0; i < 12; ++i) e += bakerLobeResponse(dot(BAKER_ICOSAHEDRON[i], n), lobe) * BAKER_RGB(t, 12, i);
   return e;
+}
+
+// ad-hemi9's lobe axes: the icosahedron turned so that its face centre (1, 1, 1)/√3 points along
+// +Y, without the three vertices below y = −1/2 ("axes" of its function set in the file).
+const vec3 BAKER_AD_HEMI9_AXES[9] = vec3[9](
+    vec3(0.367356142, 0.794654472, -0.483294667), vec3(-0.974418140, -0.187592474, -0.123767332),
+    vec3(0.974418140, 0.187592474, 0.123767332), vec3(-0.602223530, 0.794654472, -0.076492418),
+    vec3(0.380023417, -0.187592474, 0.905754529), vec3(-0.380023417, 0.187592474, -0.905754529),
+    vec3(0.234867388, 0.794654472, 0.559787084), vec3(-0.594394723, 0.187592474, 0.781987197),
+    vec3(0.594394723, -0.187592474, -0.781987197));
+
+// The radiance arriving from d.
+vec3 bakerRadianceAdHemi9(vec4 t[7], vec3 d) {
+  vec3 l = vec3(0.0);
+  for (int i = 0; i < 9; ++i) {
+    float c = max(dot(BAKER_AD_HEMI9_AXES[i], d), 0.0);
+    l += c * c * (BAKER_AD_SRBF_LOBE.x + BAKER_AD_SRBF_LOBE.y * c * c) * BAKER_RGB(t, 9, i);
+  }
+  return l;
+}
+
+vec3 bakerIrradianceFromRadianceAdHemi9(vec4 t[7], vec3 n) {
+  vec3 e = vec3(0.0);
+  for (int i = 0; i < 9; ++i) e += bakerLobeResponse(dot(BAKER_AD_HEMI9_AXES[i], n), BAKER_AD_SRBF_LOBE) * BAKER_RGB(t, 9, i);
+  return e;
+}
+
+float bakerVisibilityFromRadianceAdHemi9(vec4 t[3], vec3 n) {
+  float v = 0.0;
+  for (int i = 0; i < 9; ++i) v += bakerLobeResponse(dot(BAKER_AD_HEMI9_AXES[i], n), BAKER_AD_SRBF_LOBE) * t[i >> 2][i & 3];
+  return v / BAKER_PI;
 }
 
 vec3 bakerIrradianceFromRadianceAdCos2(vec4 t[9], vec3 n) { return bakerIrradianceFromRadianceAdLobes(t, n, BAKER_AD_COS2_LOBE); }
@@ -425,6 +456,10 @@ vec4 bakerSpecularAdCos2(vec4 t[9], vec3 n, vec3 v, float roughness, sampler2D b
 vec4 bakerSpecularAdSrbf(vec4 t[9], vec3 n, vec3 v, float roughness, sampler2D blend) {
   BakerSpecularRead r = bakerSpecularRead(n, v, roughness, blend);
   return vec4(mix(bakerIrradianceAdSrbf(t, r.reflection), bakerIrradianceFromRadianceAdSrbf(t, n) / BAKER_PI, r.blend.x), r.blend.y);
+}
+vec4 bakerSpecularAdHemi9(vec4 t[7], vec3 n, vec3 v, float roughness, sampler2D blend) {
+  BakerSpecularRead r = bakerSpecularRead(n, v, roughness, blend);
+  return vec4(mix(bakerRadianceAdHemi9(t, r.reflection), bakerIrradianceFromRadianceAdHemi9(t, n) / BAKER_PI, r.blend.x), r.blend.y);
 }
 
 // ---- Adaptive volumes (docs/DECODERS.md "Adaptive volumes on the GPU"); include

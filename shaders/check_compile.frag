@@ -61,13 +61,14 @@ void main() {
   BAKER_FETCH(visibility3, 3, uvw, v3);
   e += bakerIrradianceFromRadianceShL1(l1, n) + bakerIrradianceFromRadianceShL2(l2, n) +
        bakerIrradianceFromRadianceAmbientCube(cube, n) + bakerIrradianceFromRadianceAdCos2(dice, n) +
-       bakerIrradianceFromRadianceAdSrbf(dice, n);
+       bakerIrradianceFromRadianceAdSrbf(dice, n) + bakerIrradianceFromRadianceAdHemi9(l2, n) + bakerRadianceAdHemi9(l2, n);
   v += bakerVisibilityFromRadianceShL1(v1, n) + bakerVisibilityFromRadianceShL2(v3, n) +
        bakerVisibilityFromRadianceAmbientCube(v2, n) + bakerVisibilityFromRadianceAdCos2(v3, n) +
-       bakerVisibilityFromRadianceAdSrbf(v3, n);
+       bakerVisibilityFromRadianceAdSrbf(v3, n) + bakerVisibilityFromRadianceAdHemi9(v3, n);
   vec4 s = bakerSpecularShL1(l1, n, view, roughness, specularBlend) + bakerSpecularShL2(l2, n, view, roughness, specularBlend) +
            bakerSpecularAmbientCube(cube, n, view, roughness, specularBlend) +
            bakerSpecularAdCos2(dice, n, view, roughness, specularBlend) +
-           bakerSpecularAdSrbf(dice, n, view, roughness, specularBlend);
+           bakerSpecularAdSrbf(dice, n, view, roughness, specularBlend) +
+           bakerSpecularAdHemi9(l2, n, view, roughness, specularBlend);
   color = vec4(e + s.rgb * s.a, v);
 }

@@ -67,7 +67,8 @@ void expectRgbNear(const baker_decode::Rgb& got, const Eigen::Vector3f& expected
   EXPECT_NEAR(got.b, expected.z(), tolerance) << what;
 }
 
-const std::vector<std::string> kRadialBases = {"sh-l1", "sh-l2", "sh-l4", "ad-cos2", "ad-srbf", "ambient-cube", "sg-9", "sg-12"};
+const std::vector<std::string> kRadialBases = {"sh-l1",        "sh-l2", "sh-l4", "ad-cos2", "ad-srbf",
+                                               "ambient-cube", "sg-9",  "sg-12", "ad-hemi9"};
 
 // Coefficients in [0, 1] (a radiance fit's scale): E reaches some π, so 1e-5 of it is the bound.
 TEST(DecoderRadiance, IrradianceAndVisibilityMatchTheLibrary) {
@@ -91,7 +92,7 @@ TEST(DecoderRadiance, IrradianceAndVisibilityMatchTheLibrary) {
 TEST(DecoderRadiance, SpecularMatchesTheLibrary) {
   std::mt19937 rng(kSeed + 1);
   std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
-  for (const std::string& name : {"sh-l2", "ad-srbf", "ambient-cube", "sg-12"}) {
+  for (const std::string& name : {"sh-l2", "ad-srbf", "ambient-cube", "sg-12", "ad-hemi9"}) {
     const VolumeReconstruction library(makeBasis(name), StoredSignal::Radiance);
     const baker_decode::BasisDecoder decoder = radianceDecoder(library.basis());
     const baker_decode::SpecularTable table = specularTable(library.basis());
@@ -116,7 +117,7 @@ TEST(DecoderRadiance, SpecularMatchesTheLibrary) {
 // The header's responses of the fixed lobes are derived by hand (docs/DECODERS.md): the
 // library's series, integrated numerically, must be the same numbers.
 TEST(DecoderRadiance, BuiltInLobeResponsesAreTheFilesSeries) {
-  for (const std::string& name : {"ad-cos2", "ad-srbf", "ambient-cube"}) {
+  for (const std::string& name : {"ad-cos2", "ad-srbf", "ambient-cube", "ad-hemi9"}) {
     const json response = reconstructionData(*makeBasis(name), StoredSignal::Radiance)["function_sets"][0]["diffuse_response"];
     const std::vector<double> series = response["coefficients"].get<std::vector<double>>();
     const baker_decode::BasisDecoder decoder(name.c_str());
@@ -125,6 +126,17 @@ TEST(DecoderRadiance, BuiltInLobeResponsesAreTheFilesSeries) {
     for (int l = 0; l < set.responseTerms; ++l)
       EXPECT_NEAR(set.response[l], l < int(series.size()) ? series[std::size_t(l)] : 0.0, 1e-12) << name << " l " << l;
   }
+}
+
+// The header turns the icosahedron itself: its axes are the file's.
+TEST(DecoderRadiance, HemisphereAxesAreTheFiles) {
+  const json set = reconstructionData(*makeBasis("ad-hemi9"), StoredSignal::Radiance)["function_sets"][0];
+  const baker_decode::BasisDecoder decoder("ad-hemi9");
+  const baker_decode::FunctionSet& functions = decoder.functions(0);
+  ASSERT_EQ(functions.count(), 9);
+  ASSERT_EQ(set["axes"].size(), 9u);
+  for (int i = 0; i < 9; ++i)
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(functions.axes[3 * i + k], set["axes"][i][k].get<double>(), 1e-12) << i;
 }
 
 TEST(DecoderRadiance, PiecewiseVariantsAreRefused) {

@@ -51,7 +51,7 @@ TEST(EnvironmentSpecular, ReferencesSeeTheSkyWhereItIs) {
 TEST(EnvironmentSpecular, AConstantSkyIsReadExactly) {
   const LatLongEnvironment sky(kWidth, kHeight, Eigen::MatrixX3d::Constant(kWidth * kHeight, 3, 0.7));
   for (const std::string& name : {"sh-l2", "ad-srbf"}) {
-    const auto scores = scoreSpecularOnEnvironment(*makeBasis(name), sky, "constant", {0.1, 0.3, 0.6, 1.0});
+    const auto scores = scoreSpecularOnEnvironment(*makeBasis(name), sky, "constant", {0.1, 0.3, 0.6, 1.0}, specularFrames());
     ASSERT_FALSE(scores.empty()) << name;
     for (const EnvironmentSpecularScore& s : scores) {
       EXPECT_LT(s.diffuseRelativeRmse, 1e-4) << name << " " << fitMethodName(s.fit);

@@ -50,7 +50,8 @@ FittedSignal::FittedSignal(const Basis& basis, const SphereSignal& signal, FitMe
   const int channels = scalar_ ? 1 : 3;
   std::map<const SphericalFunctions*, NormalEquations> equations;  // channels may share a set
   for (int c = 0; c < channels; ++c) {
-    const SphericalFunctions& f = basis.functions(c);
+    // A hemispherical basis is fitted over its hemisphere only, as a bake fits it.
+    const SphericalFunctions& f = basis.fitFunctions(c);
     auto found = equations.find(&f);
     if (found == equations.end()) found = equations.emplace(&f, normalEquations(f, texels, target, basis.name())).first;
     const NormalEquations& e = found->second;

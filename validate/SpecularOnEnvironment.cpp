@@ -94,9 +94,21 @@ std::vector<SpecularFrame> specularFrames() {
   return frames;
 }
 
+std::vector<SpecularFrame> upwardFrames(const Eigen::Vector3d& up) {
+  constexpr int kTurns = 8;
+  const Eigen::Vector3d t0 = up.unitOrthogonal(), t1 = up.cross(t0);
+  std::vector<SpecularFrame> frames;
+  for (int i = 0; i < kTurns; ++i) {
+    const double turn = 2.0 * M_PI * i / kTurns;
+    const Eigen::Vector3d tangent = std::cos(turn) * t0 + std::sin(turn) * t1;
+    for (double c : kCosViews) frames.push_back({up, c * up + std::sqrt(1.0 - c * c) * tangent});
+  }
+  return frames;
+}
+
 std::vector<EnvironmentSpecularScore> scoreSpecularOnEnvironment(const Basis& basis, const LatLongEnvironment& image,
-                                                                 const std::string& path, const std::vector<double>& roughness) {
-  const std::vector<SpecularFrame> frames = specularFrames();
+                                                                 const std::string& path, const std::vector<double>& roughness,
+                                                                 const std::vector<SpecularFrame>& frames) {
   const Eigen::Index count = Eigen::Index(frames.size());
   Eigen::MatrixX3d diffuseReference(count, 3);
   std::vector<Eigen::MatrixX3d> specularReference(roughness.size(), Eigen::MatrixX3d(count, 3));

@@ -21,6 +21,9 @@ struct SpecularFrame {
   Eigen::Vector3d normal, view;
 };
 std::vector<SpecularFrame> specularFrames();
+// Surfaces facing `up` only, for bases that hold one hemisphere (Basis::hemisphere): n = up, seen
+// at the same three n·v from 8 directions around it.
+std::vector<SpecularFrame> upwardFrames(const Eigen::Vector3d& up);
 
 // The exact references, over the image as a piecewise-constant function of direction: the
 // irradiance at a unit normal, summed over every texel; the GGX-weighted mean radiance S, summed
@@ -41,6 +44,7 @@ struct EnvironmentSpecularScore {
 // `path` when the image's size is not a multiple of the fit's resolution; NumericalError when the
 // texels cannot resolve the basis's functions; std::invalid_argument for a roughness outside [0, 1].
 std::vector<EnvironmentSpecularScore> scoreSpecularOnEnvironment(const Basis& basis, const LatLongEnvironment& image,
-                                                                 const std::string& path, const std::vector<double>& roughness);
+                                                                 const std::string& path, const std::vector<double>& roughness,
+                                                                 const std::vector<SpecularFrame>& frames);
 
 }  // namespace baker

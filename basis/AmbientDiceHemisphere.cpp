@@ -1,0 +1,69 @@
+#include "basis/AmbientDiceHemisphere.h"
+
+#include <Eigen/Geometry>
+#include <cmath>
+
+#include "basis/BasisRegistry.h"
+#include "basis/Icosahedron.h"
+
+namespace baker {
+
+HemisphereLobes::HemisphereLobes() {
+  const Eigen::Vector3d faceCentre = Eigen::Vector3d::Ones().normalized();
+  const Eigen::AngleAxisd turn(std::acos(faceCentre.y()), faceCentre.cross(Eigen::Vector3d::UnitY()).normalized());
+  for (int i = 0; i < Icosahedron::kVertexCount; ++i) {
+    const Eigen::Vector3d axis = turn * Icosahedron::instance().vertex(i);
+    if (axis.y() > -0.5) axes_.push_back(axis);
+  }
+}
+
+void HemisphereLobes::evaluate(const Eigen::Vector3d& d, double* values) const {
+  for (int i = 0; i < kLobes; ++i) {
+    const double c = axes_[std::size_t(i)].dot(d);
+    values[i] = c > 0.0 ? profile_.lobe(c) : 0.0;
+  }
+}
+
+std::optional<RadialLobes> HemisphereLobes::radialLobes() const {
+  return RadialLobes{[this](double t) { return t > 0.0 ? profile_.lobe(t) : 0.0; }, axes_};
+}
+
+nlohmann::json HemisphereLobes::describe() const {
+  nlohmann::json axes = nlohmann::json::array();
+  for (const Eigen::Vector3d& a : axes_) axes.push_back({a.x() + 0.0, a.y() + 0.0, a.z() + 0.0});
+  return {{"type", "hemisphere-lobes"},
+          {"axes", axes},
+          {"axes_rule",
+           "the icosahedron's vertices but 3, 7 and 11, turned about (-1, 0, 1)/sqrt(2) through acos(1/sqrt(3)) so that "
+           "(1, 1, 1)/sqrt(3) becomes +Y"},
+          {"lobe", "f_i(n) = cos2 c^2 + cos4 c^4, c = max(0, axes[i].n)"},
+          {"cos2", profile_.cos2Coefficient()},
+          {"cos4", profile_.cos4Coefficient()},
+          {"fitted_over", "the upper hemisphere, d.y >= 0: below it the sum extrapolates"}};
+}
+
+void AboveHorizon::evaluate(const Eigen::Vector3d& d, double* values) const {
+  if (up_.dot(d) >= 0.0) {
+    functions_.evaluate(d, values);
+    return;
+  }
+  for (int i = 0; i < count(); ++i) values[i] = 0.0;
+}
+
+std::vector<Eigen::Vector3d> AboveHorizon::kinkPlanes() const {
+  std::vector<Eigen::Vector3d> planes = functions_.kinkPlanes();
+  planes.push_back(up_);
+  return planes;
+}
+
+namespace {
+
+const BasisRegistration kHemisphere({35, {}, false,
+                                     [](const std::string& name, const BasisParameters&) -> std::unique_ptr<Basis> {
+                                       if (name == "ad-hemi9") return std::make_unique<AmbientDiceHemisphere>();
+                                       return nullptr;
+                                     }});
+
+}  // namespace
+
+}  // namespace baker
