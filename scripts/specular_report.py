@@ -23,7 +23,10 @@ SCENES = {"default_room": [], "window_room": ["--env", os.path.join(SHARED, "hdr
 # (label, basis, its options): sg-12 also with the seed post's λ = 8.
 BASES = (("sh-l2", "sh-l2", []), ("sh-l4", "sh-l4", []), ("ad-srbf", "ad-srbf", []), ("sg-12", "sg-12", []),
          ("sg-12 (λ = 8)", "sg-12", ["--sg-sharpness", "8"]), ("ambient-cube", "ambient-cube", []))
-NON_NEGATIVE = ("ad-srbf", "sg-12", "ambient-cube")
+NON_NEGATIVE = ("ad-srbf", "sg-12", "ambient-cube", "ad-hemi9")
+# The seed post's comparison, at upward surfaces only (where a hemispherical basis holds light).
+CLAIM = (("ad-hemi9", "ad-hemi9", []), ("sg-12 (λ = 8)", "sg-12", ["--sg-sharpness", "8"]), ("sg-12", "sg-12", []),
+         ("ad-srbf", "ad-srbf", []))
 # The distant lights: the paper's light probes and the shared HDR environments.
 IMAGES = sorted(os.path.join(SHARED, folder, f) for folder in ("probes", "hdri")
                 if os.path.isdir(os.path.join(SHARED, folder)) for f in os.listdir(os.path.join(SHARED, folder)) if f.endswith(".hdr"))
@@ -62,16 +65,16 @@ def relative_rmse(pairs):
     return math.sqrt(sum((b - r) ** 2 for b, r in pairs) / len(pairs)) / mean if mean > 0 else None
 
 
-def measure(scene, points, basis, non_negative, rays):
+def measure(scene, points, basis, non_negative, rays, frames=FRAMES, axes=None):
     row = {"specular": {}, "left_out": {}}
     diffuse = []
     for roughness in ROUGHNESS:
         kept, dropped = [], 0
-        for normal, view in FRAMES:
+        for normal, view in frames:
             for p in probe(scene, points, basis, non_negative, rays, roughness, normal, view):
                 s = p["specular"]
-                if roughness == ROUGHNESS[-1] and normal == FRAMES[0][0]:
-                    diffuse += [(b, r) for axis in p["irradiance"] for b, r in zip(p["irradiance"][axis], p["irradiance_from_samples"][axis])]
+                if roughness == ROUGHNESS[-1] and normal == frames[0][0]:
+                    diffuse += [(b, r) for axis in (axes or p["irradiance"]) for b, r in zip(p["irradiance"][axis], p["irradiance_from_samples"][axis])]
                 if s["from_samples"] is None or s["ray_coverage"] < MIN_COVERAGE:
                     dropped += 1
                     continue
@@ -93,20 +96,15 @@ def spread(values):
     return "{:.1f} ± {:.1f} %".format(100 * mean, 100 * sd)
 
 
-def environment_section(bases):
-    if not IMAGES:
-        return ["## Light probes and HDR environments", "", "Left out: they are in ../shared/data.", ""]
-    reports = {}
-    for basis in bases:
-        reports[basis[0]] = [json.loads(subprocess.run([BAKER, "env", image, "--basis", basis[1]] + basis[2] + ["--signal", "radiance", "--json"],
-                                                       check=True, capture_output=True, text=True).stdout) for image in IMAGES]
+def environment_reports(bases, extra=()):
+    return {basis[0]: [json.loads(subprocess.run([BAKER, "env", image, "--basis", basis[1]] + basis[2] + ["--signal", "radiance", "--json"] + list(extra),
+                                                 check=True, capture_output=True, text=True).stdout) for image in IMAGES]
+            for basis in bases}
+
+
+def environment_rows(reports):
     first = next(iter(reports.values()))[0]
-    lines = ["## Light probes and HDR environments", "",
-             "Each image's radiance fitted in the basis at {} × {} texels (as `baker bases --signal radiance` fits it),".format(128, 64),
-             "then read at {} (normal, view) pairs (16 normals spread over the sphere, n·v = 1, 0.7, 0.3) against".format(first["frames"]),
-             "the exact integrals over the full image (`baker env IMAGE --basis B --signal radiance --json`).",
-             "Mean ± standard deviation over the {} images: {}.".format(len(IMAGES), ", ".join(os.path.basename(i) for i in IMAGES)), "",
-             "| basis | fit | bytes/probe | " + " | ".join("specular r={}".format(r) for r in first["roughness"]) + " | diffuse |",
+    lines = ["| basis | fit | bytes/probe | " + " | ".join("specular r={}".format(r) for r in first["roughness"]) + " | diffuse |",
              "|---|---|---|" + "---|" * len(first["roughness"]) + "---|"]
     for label, runs in reports.items():
         for fit in runs[0]["fits"]:
@@ -114,7 +112,49 @@ def environment_section(bases):
             spec = [spread([p["specular_relative_rmse"][k] for p in per]) for k in range(len(first["roughness"]))]
             lines.append("| {} | {} | {} | {} | {} |".format(label, fit.replace("_", "-"), per[0]["bytes_per_probe"], " | ".join(spec),
                                                              spread([p["diffuse_relative_rmse"] for p in per])))
-    return lines + [""]
+    return lines
+
+
+def environment_section(bases):
+    if not IMAGES:
+        return ["## Light probes and HDR environments", "", "Left out: they are in ../shared/data.", ""]
+    reports = environment_reports(bases)
+    first = next(iter(reports.values()))[0]
+    lines = ["## Light probes and HDR environments", "",
+             "Each image's radiance fitted in the basis at {} × {} texels (as `baker bases --signal radiance` fits it),".format(128, 64),
+             "then read at {} (normal, view) pairs (16 normals spread over the sphere, n·v = 1, 0.7, 0.3) against".format(first["frames"]),
+             "the exact integrals over the full image (`baker env IMAGE --basis B --signal radiance --json`).",
+             "Mean ± standard deviation over the {} images: {}.".format(len(IMAGES), ", ".join(os.path.basename(i) for i in IMAGES)), ""]
+    return lines + environment_rows(reports) + [""]
+
+
+def claim_section(rays):
+    """The seed post's comparison: nine-lobe hemispherical Ambient Dice against twelve non-negative
+    spherical Gaussians (λ = 8), at surfaces facing up."""
+    lines = ["## Nine-lobe hemispherical Ambient Dice against twelve-lobe spherical Gaussians", "",
+             "The seed post compares `ad-hemi9` (non-negative) with 12 non-negative spherical Gaussians of λ = 8. A",
+             "hemispherical basis holds light only above the surface it serves, so here every basis is read at",
+             "surfaces facing up (+Y) only. Scenes: the probes and rays above, the (normal, view) pair up, diffuse",
+             "E(+Y). Light probes: `baker env IMAGE --basis B --signal radiance --upward --json`, 24 pairs with the",
+             "normal up (n·v = 1, 0.7, 0.3 from 8 directions), mean ± standard deviation over the images.", ""]
+    for name, lighting in SCENES.items():
+        if any(a.startswith(SHARED) and not os.path.exists(a) for a in lighting):
+            continue
+        scene = (os.path.join(ROOT, "data", name, name + ".gltf"), lighting)
+        points = positions(scene[0])
+        lines += ["### " + name, "", "| basis | fit | bytes/probe | " + " | ".join("specular r={}".format(r) for r in ROUGHNESS) + " | diffuse |",
+                  "|---|---|---|" + "---|" * len(ROUGHNESS) + "---|"]
+        for basis in CLAIM:
+            for non_negative in (False, True):
+                row = measure(scene, points, basis, non_negative, rays, FRAMES[:1], ["+Y"])
+                spec = ["{}{}".format(cell(row["specular"][r]), " ({})".format(row["left_out"][r]) if row["left_out"][r] else "")
+                        for r in ROUGHNESS]
+                lines.append("| {} | {} | {} | {} | {} |".format(basis[0], "non-negative" if non_negative else "linear",
+                                                                 row.get("bytes", "—"), " | ".join(spec), cell(row["diffuse"])))
+        lines.append("")
+    if IMAGES:
+        lines += ["### Light probes and HDR environments", ""] + environment_rows(environment_reports(CLAIM, ["--upward"])) + [""]
+    return lines
 
 
 def main():
@@ -151,6 +191,8 @@ def main():
                                                                  row.get("bytes", "—"), " | ".join(spec), cell(row["diffuse"])))
         lines.append("")
     lines += environment_section(bases)
+    if not options.basis:
+        lines += claim_section(rays)
     out = os.path.join(ROOT, "docs", "specular", "report.md")
     os.makedirs(os.path.dirname(out), exist_ok=True)
     with open(out, "w") as f:
