@@ -87,6 +87,11 @@ bool prefersNonNegativeFit(const VolumeOutput& output, const Basis& basis) {
 }
 
 void requireWritable(const VolumeOutput& output, const Basis& basis) {
+  const bool engine = output.format == VolumeFormat::Bevy || output.format == VolumeFormat::ThreeJs;
+  if (engine && basis.hemisphere())
+    throw SettingError("basis", fmt::format("{} cannot be written to format {}: it holds radiance over one hemisphere, "
+                                            "and an engine's volume needs irradiance for every normal; write vdb or exr",
+                                            basis.name(), volumeFormatName(output.format)));
   if (output.format != VolumeFormat::ThreeJs) return;
   if (const std::string refusal = threeJsRefusal(basis); !refusal.empty())
     throw SettingError("basis", fmt::format("{} cannot be written to format {} exactly: {}; formats vdb, exr and bevy "

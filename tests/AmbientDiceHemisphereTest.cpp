@@ -93,13 +93,18 @@ TEST(AmbientDiceHemisphere, FitIgnoresTheLowerHemisphere) {
   EXPECT_NEAR(reading.irradiance(dark.coefficients().data(), Eigen::Vector3d::UnitY()).x(), M_PI, 0.01 * M_PI);
 }
 
-TEST(AmbientDiceHemisphere, CommandsRefuseItForIrradiance) {
+TEST(AmbientDiceHemisphere, CommandsRefuseItWhereItHoldsTooLittle) {
   const std::string dir = test::makeTempDir("AmbientDiceHemisphere");
   const std::string scene = test::sourcePath("data/default_room/default_room.gltf");
   const test::ProcessResult bake = test::runBaker(dir, {scene, "--basis", "ad-hemi9", "--out", "x.vdb"});
   EXPECT_EQ(bake.exitCode, 2);
   EXPECT_NE(bake.err.find("--signal must be radiance"), std::string::npos) << bake.err;
   EXPECT_FALSE(std::filesystem::exists(dir + "/x.vdb"));
+  // Engines' formats hold irradiance for every normal.
+  const test::ProcessResult engine =
+      test::runBaker(dir, {scene, "--basis", "ad-hemi9", "--signal", "radiance", "--format", "bevy", "--out", "bevy"});
+  EXPECT_EQ(engine.exitCode, 2);
+  EXPECT_NE(engine.err.find("every normal"), std::string::npos) << engine.err;
   const test::ProcessResult bases = test::runBaker(dir, {"bases", "--signal", "radiance", "--basis", "ad-hemi9", "x.hdr"});
   EXPECT_EQ(bases.exitCode, 2);
   EXPECT_NE(bases.err.find("ad-hemi9"), std::string::npos) << bases.err;
