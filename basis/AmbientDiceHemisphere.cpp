@@ -42,6 +42,15 @@ nlohmann::json HemisphereLobes::describe() const {
           {"fitted_over", "the upper hemisphere, d.y >= 0: below it the sum extrapolates"}};
 }
 
+Eigen::Vector3f AmbientDiceHemisphere::reconstruct(const float* coefficients, const Eigen::Vector3d& d) const {
+  double lobes[HemisphereLobes::kLobes];
+  lobes_.evaluate(d, lobes);
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (int i = 0; i < HemisphereLobes::kLobes; ++i)
+    for (int channel = 0; channel < 3; ++channel) sum[channel] += lobes[i] * coefficients[channel * HemisphereLobes::kLobes + i];
+  return sum.cast<float>();
+}
+
 void AboveHorizon::evaluate(const Eigen::Vector3d& d, double* values) const {
   if (up_.dot(d) >= 0.0) {
     functions_.evaluate(d, values);

@@ -56,6 +56,7 @@ class AmbientDiceHemisphere : public Basis {
   const SphericalFunctions& fitFunctions(int) const override { return aboveHorizon_; }
   std::optional<Eigen::Vector3d> hemisphere() const override { return Eigen::Vector3d::UnitY(); }
   int coefficientsPerLookup() const override { return 3 * HemisphereLobes::kLobes; }
+  Eigen::Vector3f reconstruct(const float* coefficients, const Eigen::Vector3d& d) const override;
 
  private:
   HemisphereLobes lobes_;
