@@ -10,9 +10,9 @@ namespace baker {
 // Nine Ambient Dice SRBF lobes for the radiance above upward-facing surfaces, after the seed
 // post's hemispherical Ambient Dice. The icosahedron is turned so that the centre of its face
 // (1, Φ, 0), (0, 1, Φ), (Φ, 0, 1) — direction (1, 1, 1)/√3 — points along +Y (glTF's up), by the
-// rotation about (−1, 0, 1)/√2 through arccos(1/√3); the nine vertices more than 120° from
-// straight down are kept, in the icosahedron's order (all but 3, 7 and 11): three 37.4° from up,
-// three 79.2°, three 100.8°. Each carries ad-srbf's lobe.
+// rotation about (−1, 0, 1)/√2 through arccos(1/√3); the nine vertices within 120° of straight
+// up are kept, in the icosahedron's order (all but 3, 7 and 11, the opposite face): three 37.4°
+// from up, three 79.2°, three 100.8°. Each carries ad-srbf's lobe.
 //
 // The lobes keep their whole extent, so each stays radial: one diffuse response and one specular
 // table serve all of them, and decoders evaluate them as they do ad-srbf. A bake fits them to

@@ -15,7 +15,7 @@ class LegendreResponse {
  public:
   static constexpr int kMaxTerms = 256;
   // NumericalError naming `label` when the series has not converged within kMaxTerms − 32
-  // terms (a lobe too sharp, e.g. a spherical Gaussian with λ of some 10⁴).
+  // terms (a lobe too sharp: a spherical Gaussian with λ above about 3000).
   LegendreResponse(const std::function<double(double)>& profile, const std::string& label);
 
   // k_0 … k_L: the terms that are kept.

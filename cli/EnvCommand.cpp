@@ -77,16 +77,20 @@ int reportRadiance(const Basis& basis, const std::string& probePath, bool upward
   const auto start = std::chrono::steady_clock::now();
   const LatLongEnvironment env = LatLongEnvironment::load(probePath);
   // A hemispherical basis is read only where it holds the light: surfaces facing its axis.
-  const std::optional<Eigen::Vector3d> up = basis.hemisphere() ? basis.hemisphere() : upward ? std::optional<Eigen::Vector3d>(Eigen::Vector3d::UnitY()) : std::nullopt;
+  std::optional<Eigen::Vector3d> up = basis.hemisphere();
+  if (!up && upward) up = Eigen::Vector3d::UnitY();
   const std::vector<SpecularFrame> chosen = up ? upwardFrames(*up) : specularFrames();
   const std::vector<EnvironmentSpecularScore> scores = scoreSpecularOnEnvironment(basis, env, probePath, kRoughness, chosen);
   const std::size_t frames = chosen.size();
   if (json) {
     nlohmann::json fits = nlohmann::json::object();
-    for (const EnvironmentSpecularScore& s : scores)
+    for (const EnvironmentSpecularScore& s : scores) {
+      nlohmann::json specular = nlohmann::json::array();
+      for (const std::optional<double>& e : s.specularRelativeRmse) specular.push_back(e ? nlohmann::json(*e) : nlohmann::json());
       fits[fitMethodName(s.fit)] = {{"bytes_per_probe", s.bytesPerProbe},
                                     {"diffuse_relative_rmse", s.diffuseRelativeRmse},
-                                    {"specular_relative_rmse", s.specularRelativeRmse}};
+                                    {"specular_relative_rmse", specular}};
+    }
     nlohmann::json report = {{"probe", probePath},
                              {"width", env.width()},
                              {"height", env.height()},
@@ -113,7 +117,8 @@ int reportRadiance(const Basis& basis, const std::string& probePath, bool upward
   std::cout << "\n";
   for (const EnvironmentSpecularScore& s : scores) {
     std::cout << fmt::format("  {:<13} {:>7} {:>8.2f}%", fitMethodName(s.fit), s.bytesPerProbe, 100.0 * s.diffuseRelativeRmse);
-    for (double e : s.specularRelativeRmse) std::cout << fmt::format(" {:>8.2f}%", 100.0 * e);
+    for (const std::optional<double>& e : s.specularRelativeRmse)
+      std::cout << (e ? fmt::format(" {:>8.2f}%", 100.0 * *e) : fmt::format(" {:>9}", "-"));
     std::cout << "\n";
   }
   std::cout << fmt::format("{:.2f} s\n", secondsSince(start));

@@ -137,7 +137,7 @@ enum class Barycentrics { Spherical, Flat };
 
 const int kMaxShOrder = 64;
 const int kMaxLobes = 64;
-const int kMaxResponseTerms = 224;
+const int kMaxResponseTerms = 224;  // the most a file's series holds (basis/LegendreResponse.h)
 
 struct FunctionSet {
   FunctionSetKind kind = FunctionSetKind::SphericalHarmonics;

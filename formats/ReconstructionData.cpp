@@ -81,13 +81,12 @@ json reconstructionData(const Basis& basis, StoredSignal signal) {
     data["visibility"] = "sum over i of visibility[i] f_i(n), f = channel 0's function set";
   }
   data["function_sets"] = sets;
-  bool icosahedron = false, bezier = false;
-  for (const json& set : sets) {
-    const std::string type = set["type"];
-    icosahedron = icosahedron || type.rfind("icosahedron-", 0) == 0;
-    bezier = bezier || type == "icosahedron-bezier";
+  // Every Ambient Dice basis lists the icosahedron (ad-hemi9's axes_rule turns it).
+  if (data["family"] == "ambient-dice") {
+    bool bezier = false;
+    for (const json& set : sets) bezier = bezier || set["type"] == "icosahedron-bezier";
+    data["icosahedron"] = icosahedronData(bezier);
   }
-  if (icosahedron) data["icosahedron"] = icosahedronData(bezier);
   return data;
 }
 

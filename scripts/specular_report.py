@@ -91,6 +91,9 @@ def cell(x):
 
 
 def spread(values):
+    values = [v for v in values if v is not None]  # null: that image's lobes all missed its light
+    if not values:
+        return "—"
     mean = sum(values) / len(values)
     sd = math.sqrt(sum((v - mean) ** 2 for v in values) / (len(values) - 1)) if len(values) > 1 else 0.0
     return "{:.1f} ± {:.1f} %".format(100 * mean, 100 * sd)

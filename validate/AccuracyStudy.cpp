@@ -70,7 +70,11 @@ std::vector<Eigen::Vector3f> referenceIrradiance(const BakeJob& job, const std::
 
 void validateAccuracyPlan(const AccuracyPlan& plan) {
   if (plan.bases.empty()) throw SettingError("basis", "is empty");
-  for (const std::string& name : plan.bases) makeBasis(name);  // unknown names fail before any work
+  for (const std::string& name : plan.bases)  // unknown names fail before any work
+    if (makeBasis(name)->hemisphere())
+      throw SettingError("basis", fmt::format("{} holds radiance over one hemisphere: the study reads every basis at "
+                                              "normals over the whole sphere, which it cannot serve",
+                                              name));
   if (plan.rays.empty()) throw SettingError("rays", "is empty");
   for (int r : plan.rays)
     if (r <= 0 || r > kMaxRaysPerProbe)

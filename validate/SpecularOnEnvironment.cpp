@@ -1,6 +1,7 @@
 #include "validate/SpecularOnEnvironment.h"
 
 #include <Eigen/Geometry>
+#include <fmt/format.h>
 #include <algorithm>
 #include <cmath>
 #include <tbb/parallel_for.h>
@@ -8,6 +9,7 @@
 #include "basis/BasisRegistry.h"
 #include "basis/DirectionSet.h"
 #include "basis/GgxLobe.h"
+#include "common/Error.h"
 #include "formats/VolumeReconstruction.h"
 #include "validate/SphereSignals.h"
 
@@ -33,10 +35,12 @@ Eigen::Vector3d radianceAt(const LatLongEnvironment& image, const Eigen::Vector3
   return image.radiance().row(std::int64_t(row) * image.width() + column).transpose();
 }
 
-// RMSE over the rows and columns of `fit` − `reference`, over the reference's mean.
-double relativeRmse(const Eigen::MatrixX3d& fit, const Eigen::MatrixX3d& reference) {
+// RMSE over the rows and columns of `fit` − `reference`, over the reference's mean; none when the
+// reference is black (narrow lobes can all miss a small source the normals still see).
+std::optional<double> relativeRmse(const Eigen::MatrixX3d& fit, const Eigen::MatrixX3d& reference) {
   const double mean = reference.mean();
-  return mean > 0.0 ? std::sqrt((fit - reference).squaredNorm() / double(reference.size())) / mean : 0.0;
+  if (!(mean > 0.0)) return std::nullopt;
+  return std::sqrt((fit - reference).squaredNorm() / double(reference.size())) / mean;
 }
 
 // The references over texels already listed (LatLongEnvironment::texels), as the public ones.
@@ -109,6 +113,8 @@ std::vector<SpecularFrame> upwardFrames(const Eigen::Vector3d& up) {
 std::vector<EnvironmentSpecularScore> scoreSpecularOnEnvironment(const Basis& basis, const LatLongEnvironment& image,
                                                                  const std::string& path, const std::vector<double>& roughness,
                                                                  const std::vector<SpecularFrame>& frames) {
+  // The fit's resolution is checked before the references' long sums.
+  const SphereSignal signal{path, areaDownsampled(image, kSignalWidth, path), false};
   const Eigen::Index count = Eigen::Index(frames.size());
   Eigen::MatrixX3d diffuseReference(count, 3);
   std::vector<Eigen::MatrixX3d> specularReference(roughness.size(), Eigen::MatrixX3d(count, 3));
@@ -120,7 +126,9 @@ std::vector<EnvironmentSpecularScore> scoreSpecularOnEnvironment(const Basis& ba
     for (std::size_t r = 0; r < roughness.size(); ++r)
       specularReference[r].row(f) = specularOverTexels(image, texels, frame, roughness[r]).transpose();
   });
-  const SphereSignal signal{path, areaDownsampled(image, kSignalWidth, path), false};
+  // A relative error needs light to be relative to.
+  if (!(diffuseReference.mean() > 0.0))
+    throw InputError(fmt::format("{}: no light reaches the surfaces read, so there is no error to measure relative to it", path));
   const auto parameters = basis.parameters();
   const auto sharpness = parameters.count("sg_sharpness") ? std::optional<double>(parameters.at("sg_sharpness")) : std::nullopt;
   const VolumeReconstruction reading(makeBasis(basis.name(), sharpness), StoredSignal::Radiance);
@@ -133,7 +141,7 @@ std::vector<EnvironmentSpecularScore> scoreSpecularOnEnvironment(const Basis& ba
     Eigen::MatrixX3d diffuse(count, 3);
     for (Eigen::Index f = 0; f < count; ++f)
       diffuse.row(f) = reading.irradiance(c, frames[std::size_t(f)].normal).cast<double>().transpose();
-    score.diffuseRelativeRmse = relativeRmse(diffuse, diffuseReference);
+    score.diffuseRelativeRmse = *relativeRmse(diffuse, diffuseReference);
     for (std::size_t r = 0; r < roughness.size(); ++r) {
       Eigen::MatrixX3d specular(count, 3);
       for (Eigen::Index f = 0; f < count; ++f) {

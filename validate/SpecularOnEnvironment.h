@@ -1,5 +1,6 @@
 #pragma once
 #include <Eigen/Core>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,11 +38,12 @@ struct EnvironmentSpecularScore {
   int bytesPerProbe = 0;
   // Relative RMSE: the RMSE over frames and RGB channels divided by the reference's mean.
   double diffuseRelativeRmse = 0.0;              // E(n), at each frame's normal
-  std::vector<double> specularRelativeRmse;      // S, per roughness asked for
+  std::vector<std::optional<double>> specularRelativeRmse;  // S, per roughness; none where S is 0 at every pair
 };
 
 // One score per fit that applies to the basis (linear, then non-negative). InputError naming
-// `path` when the image's size is not a multiple of the fit's resolution; NumericalError when the
+// `path` when the image's size is not a multiple of the fit's resolution or no light reaches the
+// frames' normals; NumericalError when the
 // texels cannot resolve the basis's functions; std::invalid_argument for a roughness outside [0, 1].
 std::vector<EnvironmentSpecularScore> scoreSpecularOnEnvironment(const Basis& basis, const LatLongEnvironment& image,
                                                                  const std::string& path, const std::vector<double>& roughness,
