@@ -108,6 +108,9 @@ TEST(AmbientDiceHemisphere, CommandsRefuseItWhereItHoldsTooLittle) {
   const test::ProcessResult bases = test::runBaker(dir, {"bases", "--signal", "radiance", "--basis", "ad-hemi9", "x.hdr"});
   EXPECT_EQ(bases.exitCode, 2);
   EXPECT_NE(bases.err.find("ad-hemi9"), std::string::npos) << bases.err;
+  const test::ProcessResult accuracy = test::runBaker(dir, {"accuracy", scene, "--basis", "ad-hemi9"});
+  EXPECT_EQ(accuracy.exitCode, 2);
+  EXPECT_NE(accuracy.err.find("whole sphere"), std::string::npos) << accuracy.err;
   const test::ProcessResult env = test::runBaker(dir, {"env", "x.hdr", "--basis", "ad-hemi9"});
   EXPECT_EQ(env.exitCode, 2);
   EXPECT_NE(env.err.find("--signal radiance"), std::string::npos) << env.err;
