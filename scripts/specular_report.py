@@ -131,6 +131,25 @@ def environment_section(bases):
     return lines + environment_rows(reports) + [""]
 
 
+def mean_of(values):
+    values = [v for v in values if v is not None]
+    return sum(values) / len(values) if values else None
+
+
+def verdict(tables):
+    """Counts the entries (specular per roughness, and diffuse) where one fit's error is below the other's."""
+    a, b = ("ad-hemi9", "non-negative"), ("sg-12 (λ = 8)", "non-negative")
+    wins = total = 0
+    for rows in tables:
+        for x, y in zip(rows[a], rows[b]):
+            if x is not None and y is not None:
+                total += 1
+                wins += x < y
+    return ["**What the numbers say about the seed's claim.** `ad-hemi9` non-negative (108 bytes per probe) has",
+            "the lower error in {} of {} entries (specular at each roughness and diffuse, in every table above)".format(wins, total),
+            "against 12 non-negative spherical Gaussians of λ = 8 (144 bytes), at three quarters of the storage.", ""]
+
+
 def claim_section(rays):
     """The seed post's comparison: nine-lobe hemispherical Ambient Dice against twelve non-negative
     spherical Gaussians (λ = 8), at surfaces facing up."""
@@ -140,6 +159,7 @@ def claim_section(rays):
              "surfaces facing up (+Y) only. Scenes: the probes and rays above, the (normal, view) pair up, diffuse",
              "E(+Y). Light probes: `baker env IMAGE --basis B --signal radiance --upward --json`, 24 pairs with the",
              "normal up (n·v = 1, 0.7, 0.3 from 8 directions), mean ± standard deviation over the images.", ""]
+    tables = []
     for name, lighting in SCENES.items():
         if any(a.startswith(SHARED) and not os.path.exists(a) for a in lighting):
             continue
@@ -147,17 +167,45 @@ def claim_section(rays):
         points = positions(scene[0])
         lines += ["### " + name, "", "| basis | fit | bytes/probe | " + " | ".join("specular r={}".format(r) for r in ROUGHNESS) + " | diffuse |",
                   "|---|---|---|" + "---|" * len(ROUGHNESS) + "---|"]
+        table = {}
+        tables.append(table)
         for basis in CLAIM:
             for non_negative in (False, True):
                 row = measure(scene, points, basis, non_negative, rays, FRAMES[:1], ["+Y"])
+                table[(basis[0], "non-negative" if non_negative else "linear")] = [row["specular"][r] for r in ROUGHNESS] + [row["diffuse"]]
                 spec = ["{}{}".format(cell(row["specular"][r]), " ({})".format(row["left_out"][r]) if row["left_out"][r] else "")
                         for r in ROUGHNESS]
                 lines.append("| {} | {} | {} | {} | {} |".format(basis[0], "non-negative" if non_negative else "linear",
                                                                  row.get("bytes", "—"), " | ".join(spec), cell(row["diffuse"])))
         lines.append("")
     if IMAGES:
-        lines += ["### Light probes and HDR environments", ""] + environment_rows(environment_reports(CLAIM, ["--upward"])) + [""]
-    return lines
+        reports = environment_reports(CLAIM, ["--upward"])
+        lines += ["### Light probes and HDR environments", ""] + environment_rows(reports) + [""]
+        tables.append({(label, fit.replace("_", "-")): [mean_of([run["fits"][fit]["specular_relative_rmse"][k] for run in runs]) for k in range(len(ROUGHNESS))]
+                       + [mean_of([run["fits"][fit]["diffuse_relative_rmse"] for run in runs])]
+                       for label, runs in reports.items() for fit in runs[0]["fits"]})
+    return lines + verdict(tables)
+
+
+def cost_section():
+    """What a read costs (bench/bench_specular.cpp), on this machine in one run: ratios carry over, ns do not."""
+    bench = os.path.join(ROOT, "build", "bench", "bench_specular")
+    if not os.path.exists(bench):
+        return ["## What a read costs", "", "Left out: build bench_specular first.", ""]
+    rows = json.loads(subprocess.run([bench, "--json"], check=True, capture_output=True, text=True).stdout)["bases"]
+    lines = ["## What a read costs", "",
+             "`build/bench/bench_specular --json`, one run on {} logical cores: nanoseconds per shading point".format(os.cpu_count()),
+             "(100 000 random normals, views and roughness, best of 5 passes). Ratios to reading an irradiance volume of the",
+             "same basis carry over between machines; the nanoseconds do not. Header: `decoders/baker_irradiance.h`.", "",
+             "| basis | irradiance volume | library: E(n) | library: specular | header: E(n) | header: specular | header specular ÷ irradiance volume |",
+             "|---|---|---|---|---|---|---|"]
+    for r in rows:
+        irr = r["irradiance_volume_read_ns"]
+        lines.append("| {} | {:.0f} ns | {:.0f} ns | {:.0f} ns | {:.0f} ns | {:.0f} ns | {:.1f} |".format(
+            r["basis"], irr, r["library"]["irradiance_ns"], r["library"]["specular_ns"], r["decoder_header"]["irradiance_ns"],
+            r["decoder_header"]["specular_ns"], r["decoder_header"]["specular_ns"] / irr))
+    return lines + ["", "The library's reads keep a small per-thread cache of responses for repeated normals (the CLI's six",
+                    "axes); at random normals it costs more than the header, which an engine would use.", ""]
 
 
 def main():
@@ -196,6 +244,7 @@ def main():
     lines += environment_section(bases)
     if not options.basis:
         lines += claim_section(rays)
+        lines += cost_section()
     out = os.path.join(ROOT, "docs", "specular", "report.md")
     os.makedirs(os.path.dirname(out), exist_ok=True)
     with open(out, "w") as f:
