@@ -436,31 +436,21 @@ BakerSpecularRead bakerSpecularRead(vec3 n, vec3 v, float roughness, sampler2D b
   return BakerSpecularRead(2.0 * cosView * n - view, mix(mix(w00, w01, f.y), mix(w10, w11, f.y), f.x));
 }
 
-vec4 bakerSpecularShL1(vec4 t[3], vec3 n, vec3 v, float roughness, sampler2D blend) {
-  BakerSpecularRead r = bakerSpecularRead(n, v, roughness, blend);
-  return vec4(mix(bakerIrradianceShL1(t, r.reflection), bakerIrradianceFromRadianceShL1(t, n) / BAKER_PI, r.blend.x), r.blend.y);
-}
-vec4 bakerSpecularShL2(vec4 t[7], vec3 n, vec3 v, float roughness, sampler2D blend) {
-  BakerSpecularRead r = bakerSpecularRead(n, v, roughness, blend);
-  return vec4(mix(bakerIrradianceShL2(t, r.reflection), bakerIrradianceFromRadianceShL2(t, n) / BAKER_PI, r.blend.x), r.blend.y);
-}
-vec4 bakerSpecularAmbientCube(vec4 t[5], vec3 n, vec3 v, float roughness, sampler2D blend) {
-  BakerSpecularRead r = bakerSpecularRead(n, v, roughness, blend);
-  return vec4(mix(bakerIrradianceAmbientCube(t, r.reflection), bakerIrradianceFromRadianceAmbientCube(t, n) / BAKER_PI, r.blend.x),
-              r.blend.y);
-}
-vec4 bakerSpecularAdCos2(vec4 t[9], vec3 n, vec3 v, float roughness, sampler2D blend) {
-  BakerSpecularRead r = bakerSpecularRead(n, v, roughness, blend);
-  return vec4(mix(bakerIrradianceAdCos2(t, r.reflection), bakerIrradianceFromRadianceAdCos2(t, n) / BAKER_PI, r.blend.x), r.blend.y);
-}
-vec4 bakerSpecularAdSrbf(vec4 t[9], vec3 n, vec3 v, float roughness, sampler2D blend) {
-  BakerSpecularRead r = bakerSpecularRead(n, v, roughness, blend);
-  return vec4(mix(bakerIrradianceAdSrbf(t, r.reflection), bakerIrradianceFromRadianceAdSrbf(t, n) / BAKER_PI, r.blend.x), r.blend.y);
-}
-vec4 bakerSpecularAdHemi9(vec4 t[7], vec3 n, vec3 v, float roughness, sampler2D blend) {
-  BakerSpecularRead r = bakerSpecularRead(n, v, roughness, blend);
-  return vec4(mix(bakerRadianceAdHemi9(t, r.reflection), bakerIrradianceFromRadianceAdHemi9(t, n) / BAKER_PI, r.blend.x), r.blend.y);
-}
+// vec4 bakerSpecular<B>(vec4 t[N], vec3 n, vec3 v, float roughness, sampler2D blend) for B = ShL1,
+// ShL2, AmbientCube, AdCos2, AdSrbf, AdHemi9: the same blend of each basis's radiance at the
+// mirror direction and its irradiance.
+#define BAKER_SPECULAR(Name, count, radianceFrom)                                                        \
+  vec4 bakerSpecular##Name(vec4 t[count], vec3 n, vec3 v, float roughness, sampler2D blend) {             \
+    BakerSpecularRead r = bakerSpecularRead(n, v, roughness, blend);                                      \
+    return vec4(mix(radianceFrom(t, r.reflection), bakerIrradianceFromRadiance##Name(t, n) / BAKER_PI, r.blend.x), \
+                r.blend.y);                                                                               \
+  }
+BAKER_SPECULAR(ShL1, 3, bakerIrradianceShL1)
+BAKER_SPECULAR(ShL2, 7, bakerIrradianceShL2)
+BAKER_SPECULAR(AmbientCube, 5, bakerIrradianceAmbientCube)
+BAKER_SPECULAR(AdCos2, 9, bakerIrradianceAdCos2)
+BAKER_SPECULAR(AdSrbf, 9, bakerIrradianceAdSrbf)
+BAKER_SPECULAR(AdHemi9, 7, bakerRadianceAdHemi9)
 
 // ---- Adaptive volumes (docs/DECODERS.md "Adaptive volumes on the GPU"); include
 // baker_adaptive.glsl first. The pool's textures are packed as above, per probe of a pool slot:

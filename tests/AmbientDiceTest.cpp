@@ -14,6 +14,7 @@
 #include "basis/AmbientDiceSrbf.h"
 #include "basis/BasisRegistry.h"
 #include "basis/Icosahedron.h"
+#include "tests/RandomDirection.h"
 
 namespace baker {
 namespace {
@@ -22,10 +23,7 @@ const Icosahedron& ico() { return Icosahedron::instance(); }
 
 const char* const kNames[] = {"ad-linear", "ad-cos2", "ad-srbf", "ad-rgb", "ad-rgb-flat", "ad-ycocg"};
 
-Eigen::Vector3d randomDirection(std::mt19937_64& rng) {
-  std::normal_distribution<double> normal;
-  return Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
-}
+using test::randomDirection;
 
 Eigen::VectorXd randomData(int n, std::mt19937_64& rng) {
   std::normal_distribution<double> normal;

@@ -16,6 +16,7 @@
 #include "basis/ShBasis.h"
 #include "decoders/baker_irradiance.h"
 #include "formats/ReconstructionData.h"
+#include "tests/RandomDirection.h"
 
 namespace baker {
 namespace {
@@ -25,13 +26,7 @@ using nlohmann::json;
 constexpr unsigned kSeed = 20240611;
 constexpr int kDirections = 300;
 
-Eigen::Vector3d randomDirection(std::mt19937& rng) {
-  std::normal_distribution<double> gaussian;
-  Eigen::Vector3d d;
-  do d = Eigen::Vector3d(gaussian(rng), gaussian(rng), gaussian(rng));
-  while (d.norm() < 1e-6);
-  return d.normalized();
-}
+using test::randomDirection;
 
 std::vector<float> randomCoefficients(std::mt19937& rng, int count) {
   std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);

@@ -13,6 +13,7 @@
 #include "decoders/baker_irradiance.h"
 #include "formats/ReconstructionData.h"
 #include "formats/VolumeReconstruction.h"
+#include "tests/RandomDirection.h"
 
 namespace baker {
 namespace {
@@ -21,13 +22,7 @@ using nlohmann::json;
 
 constexpr unsigned kSeed = 20261205;
 
-Eigen::Vector3d randomDirection(std::mt19937& rng) {
-  std::normal_distribution<double> gaussian;
-  Eigen::Vector3d d;
-  do d = Eigen::Vector3d(gaussian(rng), gaussian(rng), gaussian(rng));
-  while (d.norm() < 1e-6);
-  return d.normalized();
-}
+using test::randomDirection;
 
 baker_decode::Vec3 toDecoder(const Eigen::Vector3d& d) { return {d.x(), d.y(), d.z()}; }
 

@@ -10,16 +10,14 @@
 #include <vector>
 
 #include "basis/Icosahedron.h"
+#include "tests/RandomDirection.h"
 
 namespace baker {
 namespace {
 
 const Icosahedron& ico() { return Icosahedron::instance(); }
 
-Eigen::Vector3d randomDirection(std::mt19937_64& rng) {
-  std::normal_distribution<double> normal;
-  return Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
-}
+using test::randomDirection;
 
 TEST(Icosahedron, VerticesFollowThePapersIndexing) {
   const double phi = (std::sqrt(5.0) - 1.0) / 2.0;
