@@ -54,7 +54,7 @@ void recordSettings(const BakeJob& job, Volume& volume) {
   volume.settings["window"] = std::to_string(request.window.hannWidth);
   volume.settings["non_negative"] = request.nonNegative ? "true" : "false";
   volume.settings["signal"] = storedSignalName(job.settings().projection.signal);
-  for (const auto& [key, value] : job.basis().parameters()) volume.settings[key] = fmt::format("{}", value);
+  for (const auto& [key, value] : parameterSettings(job.basis().parameters())) volume.settings[key] = value;
   if (job.placement()) {
     volume.settings["placement"] = "adaptive";
     volume.settings["levels"] = std::to_string(job.placement()->levels());
@@ -98,7 +98,7 @@ ProbeGrid defaultGrid(const Eigen::AlignedBox3f& bounds, const Basis& basis, std
 
 BakeJob::BakeJob(BakeRequest request, RayObserver* observer) : request_(std::move(request)) {
   validateBakeRequest(request_);
-  basis_ = makeBasis(request_.basis, request_.sgSharpness);
+  basis_ = makeBasis(request_.basis, request_.basisParameters());
   // A radiance volume is read through its functions' diffuse response: lobes too sharp for it are
   // refused before anything is traced, not when the volume is first read.
   if (parseStoredSignal(request_.signal) == StoredSignal::Radiance)

@@ -42,7 +42,7 @@ void validateBakeRequest(const BakeRequest& r) {
     throw SettingError("window", "fades the SH bands of the irradiance fit; a radiance volume fits the samples in "
                                  "the basis directly and has no SH bands to fade");
   requireKnownEffects(r.turnedOff);
-  const std::unique_ptr<Basis> basis = makeBasis(r.basis, r.sgSharpness);
+  const std::unique_ptr<Basis> basis = makeBasis(r.basis, r.basisParameters());
   if (basis->hemisphere() && signal != StoredSignal::Radiance)
     throw SettingError("signal", fmt::format("must be radiance for {}: it holds the radiance over one hemisphere, "
                                              "from which no irradiance for every normal follows",

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "basis/BasisParameters.h"
 #include "basis/GramOperators.h"
 #include "scene/SceneOptions.h"
 #include "volume/LevelGrids.h"
@@ -27,6 +28,7 @@ struct BakeRequest {
   SceneOptions scene;                  // glTF scene index and environment
   std::string basis = kDefaultBasis;   // a name of basisNames()
   std::optional<double> sgSharpness;   // λ of sg-N lobes; none: the measured default
+  std::optional<Eigen::Vector3d> hemisphereAxis;  // up of ad-hemi9's hemisphere; none: +Y
   std::optional<double> spacing;       // metres; none: the scene's longest side / 16
   // A preset of qualityPresets(): each probe traces until its error is under the preset's
   // target. Empty: every probe traces `rays` directions, no more and no fewer.
@@ -50,6 +52,7 @@ struct BakeRequest {
   int marginCells = kDefaultMarginCells;
 
   bool adaptive() const { return placement == "adaptive"; }
+  BasisParameters basisParameters() const { return {sgSharpness, hemisphereAxis}; }
 };
 
 // Every check that needs no scene: values in range, names known, combinations that make sense.

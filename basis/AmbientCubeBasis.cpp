@@ -32,7 +32,7 @@ Eigen::Vector3f AmbientCubeBasis::reconstruct(const float* coefficients, const E
 
 namespace {
 
-const BasisRegistration kAmbientCube({60, {"ambient-cube"}, false,
+const BasisRegistration kAmbientCube({60, {"ambient-cube"}, {},
                                       [](const std::string& name, const BasisParameters&) -> std::unique_ptr<Basis> {
                                         if (name == "ambient-cube") return std::make_unique<AmbientCubeBasis>();
                                         return nullptr;

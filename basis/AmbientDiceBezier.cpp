@@ -114,7 +114,7 @@ Eigen::Vector3f AmbientDiceBezier::reconstruct(const float* coefficients, const 
 
 namespace {
 
-const BasisRegistration kBezier({40, {"ad-rgb", "ad-rgb-flat"}, false,
+const BasisRegistration kBezier({40, {"ad-rgb", "ad-rgb-flat"}, {},
                                  [](const std::string& name, const BasisParameters&) -> std::unique_ptr<Basis> {
                                    if (name == "ad-rgb") return std::make_unique<AmbientDiceBezier>(Barycentrics::Spherical);
                                    if (name == "ad-rgb-flat") return std::make_unique<AmbientDiceBezier>(Barycentrics::Flat);

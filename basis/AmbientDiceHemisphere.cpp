@@ -8,12 +8,26 @@
 
 namespace baker {
 
-HemisphereLobes::HemisphereLobes() {
+namespace {
+
+// The shortest rotation from +Y to `axis` (unit), and the half turn about +X for −Y.
+Eigen::Matrix3d upTo(const Eigen::Vector3d& axis) {
+  const Eigen::Vector3d turnAbout = Eigen::Vector3d::UnitY().cross(axis);
+  if (turnAbout.norm() == 0.0)
+    return axis.y() > 0.0 ? Eigen::Matrix3d::Identity() : Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  // atan2 keeps the angle exact near ±Y, where acos of y = 1 − ε loses it.
+  return Eigen::AngleAxisd(std::atan2(turnAbout.norm(), axis.y()), turnAbout.normalized()).toRotationMatrix();
+}
+
+}  // namespace
+
+HemisphereLobes::HemisphereLobes(const Eigen::Vector3d& axis) : hemisphereAxis_(axis) {
   const Eigen::Vector3d faceCentre = Eigen::Vector3d::Ones().normalized();
-  const Eigen::AngleAxisd turn(std::acos(faceCentre.y()), faceCentre.cross(Eigen::Vector3d::UnitY()).normalized());
+  const Eigen::AngleAxisd faceUp(std::acos(faceCentre.y()), faceCentre.cross(Eigen::Vector3d::UnitY()).normalized());
+  const Eigen::Matrix3d toAxis = upTo(axis);
   for (int i = 0; i < Icosahedron::kVertexCount; ++i) {
-    const Eigen::Vector3d axis = turn * Icosahedron::instance().vertex(i);
-    if (axis.y() > -0.5) axes_.push_back(axis);
+    const Eigen::Vector3d turned = faceUp * Icosahedron::instance().vertex(i);
+    if (turned.y() > -0.5) axes_.push_back(toAxis * turned);
   }
 }
 
@@ -35,11 +49,13 @@ nlohmann::json HemisphereLobes::describe() const {
           {"axes", axes},
           {"axes_rule",
            "the icosahedron's vertices but 3, 7 and 11, turned about (-1, 0, 1)/sqrt(2) through acos(1/sqrt(3)) so that "
-           "(1, 1, 1)/sqrt(3) becomes +Y"},
+           "(1, 1, 1)/sqrt(3) becomes +Y, then by the shortest rotation from +Y to hemisphere_axis (the half turn about "
+           "+X for -Y)"},
+          {"hemisphere_axis", {hemisphereAxis_.x() + 0.0, hemisphereAxis_.y() + 0.0, hemisphereAxis_.z() + 0.0}},
           {"lobe", "f_i(n) = cos2 c^2 + cos4 c^4, c = max(0, axes[i].n)"},
           {"cos2", profile_.cos2Coefficient()},
           {"cos4", profile_.cos4Coefficient()},
-          {"fitted_over", "the upper hemisphere, d.y >= 0: below it the sum extrapolates"}};
+          {"fitted_over", "the hemisphere d.hemisphere_axis >= 0: beyond it the sum extrapolates"}};
 }
 
 Eigen::Vector3f AmbientDiceHemisphere::reconstruct(const float* coefficients, const Eigen::Vector3d& d) const {
@@ -67,10 +83,11 @@ std::vector<Eigen::Vector3d> AboveHorizon::kinkPlanes() const {
 
 namespace {
 
-const BasisRegistration kHemisphere({35, {}, false,
-                                     [](const std::string& name, const BasisParameters&) -> std::unique_ptr<Basis> {
-                                       if (name == "ad-hemi9") return std::make_unique<AmbientDiceHemisphere>();
-                                       return nullptr;
+const BasisRegistration kHemisphere({35, {}, {"hemisphere_axis"},
+                                     [](const std::string& name, const BasisParameters& p) -> std::unique_ptr<Basis> {
+                                       if (name != "ad-hemi9") return nullptr;
+                                       return std::make_unique<AmbientDiceHemisphere>(
+                                           p.hemisphereAxis.value_or(Eigen::Vector3d::UnitY()));
                                      }});
 
 }  // namespace

@@ -7,12 +7,14 @@
 
 namespace baker {
 
-// Nine Ambient Dice SRBF lobes for the radiance above upward-facing surfaces, after the seed
+// Nine Ambient Dice SRBF lobes for the radiance above surfaces facing one axis, after the seed
 // post's hemispherical Ambient Dice. The icosahedron is turned so that the centre of its face
 // (1, Φ, 0), (0, 1, Φ), (Φ, 0, 1) — direction (1, 1, 1)/√3 — points along +Y (glTF's up), by the
 // rotation about (−1, 0, 1)/√2 through arccos(1/√3); the nine vertices within 120° of straight
 // up are kept, in the icosahedron's order (all but 3, 7 and 11, the opposite face): three 37.4°
-// from up, three 79.2°, three 100.8°. Each carries ad-srbf's lobe.
+// from up, three 79.2°, three 100.8°. Each carries ad-srbf's lobe. For another axis (walls,
+// ceilings) the nine are then turned by the shortest rotation from +Y to it; for −Y, which has
+// no shortest one, by the half turn about +X.
 //
 // The lobes keep their whole extent, so each stays radial: one diffuse response and one specular
 // table serve all of them, and decoders evaluate them as they do ad-srbf. A bake fits them to
@@ -21,7 +23,7 @@ namespace baker {
 class HemisphereLobes : public SphericalFunctions {
  public:
   static constexpr int kLobes = 9;
-  HemisphereLobes();
+  explicit HemisphereLobes(const Eigen::Vector3d& axis);
   int count() const override { return kLobes; }
   void evaluate(const Eigen::Vector3d& direction, double* values) const override;
   nlohmann::json describe() const override;
@@ -31,6 +33,7 @@ class HemisphereLobes : public SphericalFunctions {
 
  private:
   AmbientDiceSrbfFunctions profile_{0.7, 0.3};
+  Eigen::Vector3d hemisphereAxis_;
   std::vector<Eigen::Vector3d> axes_;
 };
 
@@ -47,20 +50,25 @@ class AboveHorizon : public SphericalFunctions {
   Eigen::Vector3d up_;
 };
 
-// CLI name "ad-hemi9": radiance only (an irradiance bake is refused), the same lobes for R, G, B.
+// CLI name "ad-hemi9": radiance only (an irradiance bake is refused), the same lobes for R, G, B,
+// about a unit axis (default +Y).
 class AmbientDiceHemisphere : public Basis {
  public:
+  explicit AmbientDiceHemisphere(const Eigen::Vector3d& axis = Eigen::Vector3d::UnitY())
+      : axis_(axis), lobes_(axis), aboveHorizon_(lobes_, axis) {}
   std::string name() const override { return "ad-hemi9"; }
   std::string family() const override { return "ambient-dice"; }
   const SphericalFunctions& functions(int) const override { return lobes_; }
   const SphericalFunctions& fitFunctions(int) const override { return aboveHorizon_; }
-  std::optional<Eigen::Vector3d> hemisphere() const override { return Eigen::Vector3d::UnitY(); }
+  BasisParameters parameters() const override { return {std::nullopt, axis_}; }
+  std::optional<Eigen::Vector3d> hemisphere() const override { return axis_; }
   int coefficientsPerLookup() const override { return 3 * HemisphereLobes::kLobes; }
   Eigen::Vector3f reconstruct(const float* coefficients, const Eigen::Vector3d& d) const override;
 
  private:
+  Eigen::Vector3d axis_;
   HemisphereLobes lobes_;
-  AboveHorizon aboveHorizon_{lobes_, Eigen::Vector3d::UnitY()};
+  AboveHorizon aboveHorizon_;
 };
 
 }  // namespace baker

@@ -26,7 +26,7 @@ Eigen::Vector3f AmbientDiceLinear::reconstruct(const float* coefficients, const 
 
 namespace {
 
-const BasisRegistration kLinear({20, {"ad-linear"}, false,
+const BasisRegistration kLinear({20, {"ad-linear"}, {},
                                  [](const std::string& name, const BasisParameters&) -> std::unique_ptr<Basis> {
                                    if (name == "ad-linear") return std::make_unique<AmbientDiceLinear>();
                                    return nullptr;

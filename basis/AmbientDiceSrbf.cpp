@@ -61,7 +61,7 @@ Eigen::Vector3f AmbientDiceSrbf::reconstruct(const float* coefficients, const Ei
 namespace {
 
 // The paper's lobes (cos² alone) and the SRBF mix of cos² and cos⁴ (docs/BASES.md).
-const BasisRegistration kLobes({30, {"ad-cos2", "ad-srbf"}, false,
+const BasisRegistration kLobes({30, {"ad-cos2", "ad-srbf"}, {},
                                 [](const std::string& name, const BasisParameters&) -> std::unique_ptr<Basis> {
                                   if (name == "ad-cos2") return std::make_unique<AmbientDiceSrbf>(name, 1.0, 0.0);
                                   if (name == "ad-srbf") return std::make_unique<AmbientDiceSrbf>(name, 0.7, 0.3);

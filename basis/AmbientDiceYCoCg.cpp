@@ -27,7 +27,7 @@ Eigen::Vector3f AmbientDiceYCoCg::reconstruct(const float* coefficients, const E
 
 namespace {
 
-const BasisRegistration kYCoCg({50, {"ad-ycocg"}, false,
+const BasisRegistration kYCoCg({50, {"ad-ycocg"}, {},
                                 [](const std::string& name, const BasisParameters&) -> std::unique_ptr<Basis> {
                                   if (name == "ad-ycocg") return std::make_unique<AmbientDiceYCoCg>();
                                   return nullptr;

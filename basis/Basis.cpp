@@ -27,7 +27,7 @@ Eigen::Vector3f toRgb(ColorSpace space, const Eigen::Vector3f& c) {
 
 std::string Basis::identity() const {
   std::string key = name();
-  for (const auto& [parameter, value] : parameters()) key += fmt::format("/{}={:.17g}", parameter, value);
+  for (const auto& [parameter, value] : parameterSettings(parameters())) key += fmt::format("/{}={}", parameter, value);
   return key;
 }
 

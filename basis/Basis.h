@@ -1,9 +1,9 @@
 #pragma once
 #include <Eigen/Core>
-#include <map>
 #include <optional>
 #include <string>
 
+#include "basis/BasisParameters.h"
 #include "basis/SphericalFunctions.h"
 
 namespace baker {
@@ -25,8 +25,9 @@ class Basis {
   virtual std::string name() const = 0;
   // What a reader dispatches on: "sh", "ambient-dice", "ambient-cube", "spherical-gaussians".
   virtual std::string family() const = 0;
-  // Values that the name leaves open, as a volume's settings record them (e.g. sg_sharpness).
-  virtual std::map<std::string, double> parameters() const { return {}; }
+  // What the name leaves open, with the values this basis uses (e.g. sg-N's sharpness): given to
+  // makeBasis with the name, they make the same basis.
+  virtual BasisParameters parameters() const { return {}; }
   virtual ColorSpace colorSpace() const { return ColorSpace::Rgb; }
   virtual const SphericalFunctions& functions(int channel) const = 0;
   // What a bake fits the samples with, when it is not functions(): a hemispherical basis fits

@@ -33,18 +33,28 @@ std::vector<std::string> basisNames() {
   return names;
 }
 
-std::unique_ptr<Basis> makeBasis(const std::string& name, const std::optional<double>& sharpness) {
-  if (sharpness && !(*sharpness > 0.0 && std::isfinite(*sharpness)))
-    throw SettingError("sg_sharpness", fmt::format("must be a positive number, got {}", *sharpness));
+std::unique_ptr<Basis> makeBasis(const std::string& name, const BasisParameters& given) {
+  BasisParameters parameters = given;
+  if (const std::optional<double>& s = parameters.sharpness; s && !(*s > 0.0 && std::isfinite(*s)))
+    throw SettingError("sg_sharpness", fmt::format("must be a positive number, got {}", *s));
+  if (std::optional<Eigen::Vector3d>& axis = parameters.hemisphereAxis) {
+    if (!(axis->allFinite() && axis->norm() > 0.0))
+      throw SettingError("hemisphere_axis", fmt::format("must be a finite direction, not zero, got {},{},{}", axis->x(),
+                                                        axis->y(), axis->z()));
+    axis->normalize();
+  }
   for (const BasisFamily& family : families()) {
-    std::unique_ptr<Basis> basis = family.make(name, BasisParameters{family.takesSharpness ? sharpness : std::nullopt});
+    std::unique_ptr<Basis> basis = family.make(name, parameters);
     if (!basis) continue;
-    if (sharpness && !family.takesSharpness)
-      throw SettingError("sg_sharpness", fmt::format("applies to sg-N bases only, not '{}'", name));
+    for (const auto& [key, value] : parameterSettings(parameters))
+      if (std::find(family.takes.begin(), family.takes.end(), key) == family.takes.end())
+        throw SettingError(key, fmt::format("does not apply to '{}'", name));
     return basis;
   }
   throw SettingError("basis", fmt::format("'{}' is not a basis (known: {})", name, fmt::join(basisNames(), ", ")));
 }
+
+std::unique_ptr<Basis> makeBasisLike(const Basis& basis) { return makeBasis(basis.name(), basis.parameters()); }
 
 bool admitsNonNegativeFit(const Basis& basis) {
   const int constrainedChannels = basis.colorSpace() == ColorSpace::Rgb ? 3 : 1;

@@ -32,7 +32,7 @@ namespace {
 
 const BasisRegistration kShBases({10,
                                   {"sh-l0", "sh-l1", "sh-l2", "sh-l3", "sh-l4", "sh-l5", "sh-l6", "sh-l7", "sh-l8"},
-                                  false,
+                                  {},
                                   [](const std::string& name, const BasisParameters&) -> std::unique_ptr<Basis> {
                                     for (int l = 0; l <= 8; ++l)
                                       if (name == "sh-l" + std::to_string(l)) return std::make_unique<ShBasis>(l);

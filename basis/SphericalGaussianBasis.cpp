@@ -133,7 +133,7 @@ std::vector<std::string> measuredNames() {
   return names;
 }
 
-const BasisRegistration kGaussians({70, measuredNames(), true,
+const BasisRegistration kGaussians({70, measuredNames(), {"sg_sharpness"},
                                     [](const std::string& name, const BasisParameters& p) -> std::unique_ptr<Basis> {
                                       const int lobes = sphericalGaussianLobeCount(name);
                                       if (lobes == 0) return nullptr;
@@ -161,8 +161,8 @@ std::optional<RadialLobes> SphericalGaussians::radialLobes() const {
   return RadialLobes{[lambda](double t) { return std::exp(lambda * (t - 1.0)); }, axes_};
 }
 
-std::map<std::string, double> SphericalGaussianBasis::parameters() const {
-  return {{"sg_sharpness", sharpness()}};
+BasisParameters SphericalGaussianBasis::parameters() const {
+  return {sharpness(), std::nullopt};
 }
 
 }  // namespace baker

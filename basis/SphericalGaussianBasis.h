@@ -45,7 +45,7 @@ class SphericalGaussianBasis : public Basis {
 
   std::string name() const override { return "sg-" + std::to_string(lobes_.count()); }
   std::string family() const override { return "spherical-gaussians"; }
-  std::map<std::string, double> parameters() const override;
+  BasisParameters parameters() const override;
   const SphericalFunctions& functions(int) const override { return lobes_; }
   int coefficientsPerLookup() const override { return 3 * lobes_.count(); }
   Eigen::Vector3f reconstruct(const float* coefficients, const Eigen::Vector3d& d) const override;

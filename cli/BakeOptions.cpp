@@ -5,6 +5,7 @@
 #include <ostream>
 
 #include "bake/ProbeConvergence.h"
+#include "cli/CommandLine.h"
 #include "cli/SceneFlags.h"
 #include "common/Error.h"
 #include "volume/MemoryEstimate.h"
@@ -38,6 +39,8 @@ void addBakeOptions(CLI::App& app, BakeOptions& o, bool listed) {
       ->allow_extra_args(false);
   app.add_option("--threads", r.threads, "worker threads; default: all cores (the result does not depend on it)");
   app.add_option("--sg-sharpness", o.sgSharpness, "lobe sharpness λ for sg-N bases; default: measured per N");
+  app.add_option("--hemisphere-axis", o.hemisphereAxis,
+                 "x,y,z: the axis ad-hemi9's hemisphere is about, e.g. a wall's normal; default 0,1,0 (up)");
   app.add_option("--window", r.window.hannWidth,
                  "fade SH bands out with a Hann window of this width before projecting (paper eq. 8; less "
                  "ringing around bright small sources); default: none");
@@ -72,6 +75,7 @@ BakeRequest bakeRequest(const CLI::App& app, const BakeOptions& options) {
   BakeRequest request = options.request;
   if (app.count("--spacing")) request.spacing = options.spacing;
   if (app.count("--sg-sharpness")) request.sgSharpness = options.sgSharpness;
+  if (app.count("--hemisphere-axis")) request.hemisphereAxis = parseTriple("--hemisphere-axis", options.hemisphereAxis);
   if (app.count("--rays")) request.quality.clear();
   return request;
 }

@@ -18,6 +18,7 @@ namespace baker {
 struct BakeOptions {
   BakeRequest request;
   double spacing = 0.0, sgSharpness = 0.0;  // taken only when their flag is given
+  std::string hemisphereAxis;
 };
 
 // `listed`: a command that takes lists of bases, ray and bounce counts registers its own

@@ -103,7 +103,7 @@ int reportRadiance(const Basis& basis, const std::string& probePath, bool upward
                              {"reference", "exact integrals over all texels of the image"},
                              {"fits", fits},
                              {"seconds", secondsSince(start)}};
-    for (const auto& [key, value] : basis.parameters()) report[key] = value;
+    report.update(parametersJson(basis.parameters()));
     std::cout << report.dump(2) << "\n";
     return 0;
   }
@@ -141,7 +141,6 @@ int reportIrradiance(const Basis& basis, const std::string& probePath, const std
   const double fitSeconds = secondsSince(stage);
   const std::vector<std::string> written =
       outDir.empty() ? std::vector<std::string>{} : writeImages(outDir, env, reference, fits.front().irradiance);
-  const std::map<std::string, double> parameters = basis.parameters();
 
   if (json) {
     nlohmann::json rmse = nlohmann::json::object(), conditioning = nlohmann::json::object();
@@ -163,7 +162,7 @@ int reportIrradiance(const Basis& basis, const std::string& probePath, const std
         {"seconds", {{"total", secondsSince(start)}, {"reference", referenceSeconds}, {"fit", fitSeconds}}},
     };
     if (!conditioning.empty()) report["gram_condition_number"] = conditioning;
-    for (const auto& [key, value] : parameters) report[key] = value;
+    report.update(parametersJson(basis.parameters()));
     if (!written.empty()) report["outputs"] = written;
     std::cout << report.dump(2) << "\n";
   } else {
@@ -194,7 +193,7 @@ int runEnvCommand(int argc, char** argv) {
       "sum and convolved with the clamped cosine, unclamped and clamped at 0. Other bases: least squares fits to "
       "the exact irradiance, solid-angle weighted and unweighted. With --signal radiance: fit its radiance instead "
       "and read diffuse and GGX specular from the fit, against exact integrals over the image."};
-  std::string probePath, basisName, outDir;
+  std::string probePath, basisName, outDir, hemisphereAxis;
   double sharpness = 0.0;
   bool json = false;
   app.add_option("probe", probePath, "lat-long HDR or EXR image (+Y up, image centre towards -Z)")->required();
@@ -205,6 +204,7 @@ int runEnvCommand(int argc, char** argv) {
                  "float EXR, and as PNG: exposure mapping the reference mean to 0.18, sRGB curve; the error PNG "
                  "shows |error| scaled so its maximum is white");
   app.add_option("--sg-sharpness", sharpness, "lobe sharpness for sg-N bases (default: measured per N)");
+  app.add_option("--hemisphere-axis", hemisphereAxis, "x,y,z: the axis ad-hemi9's hemisphere is about (default 0,1,0)");
   std::string signal = "irradiance";
   app.add_option("--signal", signal,
                  "irradiance (default): the paper's irradiance fits above; radiance: fit the probe's radiance and "
@@ -214,11 +214,13 @@ int runEnvCommand(int argc, char** argv) {
   bool upward = false;
   app.add_flag("--upward", upward,
                "with --signal radiance: read at upward-facing surfaces only (normal +Y), as a hemispherical basis "
-               "(ad-hemi9) always is");
+               "(ad-hemi9) always is, about its axis");
 
   return runGuarded("baker env", app, argc, argv, [&]() {
-    const std::unique_ptr<Basis> basis =
-        makeBasis(basisName, app.count("--sg-sharpness") ? std::optional<double>(sharpness) : std::nullopt);
+    BasisParameters parameters;
+    if (app.count("--sg-sharpness")) parameters.sharpness = sharpness;
+    if (app.count("--hemisphere-axis")) parameters.hemisphereAxis = parseTriple("--hemisphere-axis", hemisphereAxis);
+    const std::unique_ptr<Basis> basis = makeBasis(basisName, parameters);
     if (upward && signal != "radiance") throw InputError("--upward reads radiance fits: add --signal radiance");
     if (basis->hemisphere() && signal != "radiance")
       throw InputError(fmt::format("--basis {}: holds radiance over one hemisphere, not irradiance: add --signal radiance",

@@ -114,7 +114,7 @@ int runProbeCommand(int argc, char** argv) {
       throw InputError("--roughness and --view read specular from radiance: add --signal radiance");
     const std::unique_ptr<BakeJob> job = prepareBake(app, options, std::cerr);
     const Basis& basis = job->basis();
-    const VolumeReconstruction reading(makeBasis(basis.name(), job->request().sgSharpness),
+    const VolumeReconstruction reading(makeBasisLike(basis),
                                        job->settings().projection.signal);
     const BakedProbes baked = job->probesAt(positions);
     nlohmann::json probes = nlohmann::json::array();

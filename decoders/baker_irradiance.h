@@ -445,8 +445,9 @@ class BasisDecoder {
   }
   int coefficientsPerProbe() const { return coefficientOffset(3); }
 
-  // Lobe axes as listed in "baker.reconstruction" (3 numbers per lobe), in place of the
-  // spherical Fibonacci points this decoder computes itself.
+  // Lobe axes as listed in "baker.reconstruction" (3 numbers per lobe) for sg-N and ad-hemi9,
+  // in place of the ones this decoder computes itself: sg-N's spherical Fibonacci points, and
+  // ad-hemi9's about +Y, which a volume baked with another hemisphere_axis does not use.
   void setLobeAxes(const double* axes) {
     for (int i = 0; i < 3 * primary_.lobeCount; ++i) primary_.axes[i] = axes[i];
   }

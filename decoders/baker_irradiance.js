@@ -321,7 +321,8 @@ export class BasisDecoder {
 	}
 	get coefficientsPerProbe() { return this.coefficientOffset( 3 ); }
 
-	// Lobe axes as listed in "baker.reconstruction" ([x, y, z] per lobe).
+	// Lobe axes as listed in "baker.reconstruction" ([x, y, z] per lobe) for sg-N and ad-hemi9, in
+	// place of the built-in ones (ad-hemi9's are about +Y: a volume baked about another axis needs these).
 	setLobeAxes( axes ) { this.primary.axes = axes.map( ( a ) => [ a[ 0 ], a[ 1 ], a[ 2 ] ] ); }
 
 	// RGB irradiance at unit normal n from one probe's coefficients, starting at `offset`.

@@ -143,7 +143,7 @@ AdaptiveVolume readAdaptiveExrSlices(const std::string& path) {
   const std::filesystem::path root = exrVolumeDirectory(path);
   const std::string manifestPath = (root / "manifest.json").string();
   const LevelsManifest levels = levelsManifest(m, manifestPath);
-  const std::unique_ptr<Basis> basis = basisInFile(levels.basis, std::nullopt, manifestPath);
+  const std::unique_ptr<Basis> basis = basisInFile(levels.basis, {}, manifestPath);
   LevelChecks checks(*basis, manifestPath);
   checks.margin(levels.marginCells, kMarginKey);
   volume.marginCells = levels.marginCells;

@@ -39,7 +39,7 @@ void requireKnownFormatVersion(const std::vector<std::pair<std::string, std::str
 
 Volume VolumeHeader::emptyVolume(const std::string& path, PartReading parts) const {
   requireKnownFormatVersion(text, path);
-  const std::unique_ptr<Basis> basis = basisInFile(basisName, std::nullopt, path);
+  const std::unique_ptr<Basis> basis = basisInFile(basisName, {}, path);
   if (coefficientsPerProbe != basis->totalCoefficients())
     throw InputError(fmt::format("{}: baker.coefficients_per_probe is {}, but {} has {}", path, coefficientsPerProbe,
                                  basisName, basis->totalCoefficients()));
@@ -108,12 +108,14 @@ void requireFiniteValues(const Volume& v, const std::string& path) {
     if (!o.allFinite()) throw InputError(fmt::format("{}: a probe offset is not finite", path));
 }
 
-std::unique_ptr<Basis> basisInFile(const std::string& name, const std::optional<double>& sharpness,
+std::unique_ptr<Basis> basisInFile(const std::string& name, const std::map<std::string, std::string>& settings,
                                    const std::string& where) {
+  const BasisParameters parameters = parametersFromSettings(settings);
   try {
-    return makeBasis(name, sharpness);
+    return makeBasis(name, parameters);
   } catch (const SettingError& e) {
-    throw InputError(fmt::format("{}: {}", where, e.what()));
+    const std::string field = e.setting() == "basis" ? e.what() : "baker.setting." + std::string(e.what());
+    throw InputError(where.empty() ? field : fmt::format("{}: {}", where, field));
   }
 }
 

@@ -51,9 +51,10 @@ struct VolumeHeader {
 // InputError naming `path` and the probe when a value read from a file is NaN or infinite.
 void requireFiniteValues(const Volume& volume, const std::string& path);
 
-// The basis a file names, or InputError naming `where` (the file, or its metadata key): a file's
-// basis is what the file says, not a setting of the command reading it.
-std::unique_ptr<Basis> basisInFile(const std::string& name, const std::optional<double>& sharpness,
+// The basis a file names with the parameters its settings record, or InputError naming `where`
+// (the file; may be empty) and the setting: a file's basis is what the file says, not a setting
+// of the command reading it.
+std::unique_ptr<Basis> basisInFile(const std::string& name, const std::map<std::string, std::string>& settings,
                                    const std::string& where);
 
 }  // namespace baker

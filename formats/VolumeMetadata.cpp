@@ -90,9 +90,9 @@ nlohmann::json exportedMetadataJson(const Volume& source, const Basis& sourceBas
   // An engine's format holds irradiance, as baker reads it back, whatever the bake stored.
   held.settings["source_signal"] = storedSignalName(storedSignalOf(source.settings));
   held.settings["signal"] = storedSignalName(StoredSignal::Irradiance);
-  for (const auto& [name, value] : sourceBasis.parameters()) {
+  for (const auto& [name, value] : parameterSettings(sourceBasis.parameters())) {
     held.settings.erase(name);
-    held.settings["source_" + name] = fmt::format("{:.17g}", value);
+    held.settings["source_" + name] = value;
   }
   return describingMetadataJson(held, stored);
 }

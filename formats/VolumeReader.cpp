@@ -61,17 +61,7 @@ AdaptiveVolume readLevels(const std::string& path) {
 }
 
 std::unique_ptr<Basis> basisOf(const Volume& volume) {
-  const auto sharpness = volume.settings.find("sg_sharpness");
-  if (sharpness == volume.settings.end()) return basisInFile(volume.basisName, std::nullopt, "baker.basis");
-  double value = 0.0;
-  try {
-    value = std::stod(sharpness->second);
-  } catch (const std::logic_error&) {
-    throw InputError(fmt::format("baker.setting.sg_sharpness \"{}\" is not a number", sharpness->second));
-  }
-  // 0 was once written for "the measured default".
-  return basisInFile(volume.basisName, value == 0.0 ? std::nullopt : std::optional<double>(value),
-                     "baker.setting.sg_sharpness");
+  return basisInFile(volume.basisName, volume.settings, "");
 }
 
 }  // namespace baker

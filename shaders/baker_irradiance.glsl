@@ -353,14 +353,19 @@ vec3 bakerIrradianceFromRadianceAdLobes(vec4 t[9], vec3 n, vec2 lobe) {
   return e;
 }
 
-// ad-hemi9's lobe axes: the icosahedron turned so that its face centre (1, 1, 1)/√3 points along
-// +Y, without the three vertices below y = −1/2 ("axes" of its function set in the file).
-const vec3 BAKER_AD_HEMI9_AXES[9] = vec3[9](
+// ad-hemi9's lobe axes about +Y (the default --hemisphere-axis): the icosahedron turned so that its
+// face centre (1, 1, 1)/√3 points along +Y, without the three vertices below y = −1/2. For a
+// volume baked about another axis, put the 9 "axes" of its function set in a uniform vec3[9] and
+// #define BAKER_AD_HEMI9_AXES as that uniform's name before including this file.
+const vec3 BAKER_AD_HEMI9_AXES_UP[9] = vec3[9](
     vec3(0.367356142, 0.794654472, -0.483294667), vec3(-0.974418140, -0.187592474, -0.123767332),
     vec3(0.974418140, 0.187592474, 0.123767332), vec3(-0.602223530, 0.794654472, -0.076492418),
     vec3(0.380023417, -0.187592474, 0.905754529), vec3(-0.380023417, 0.187592474, -0.905754529),
     vec3(0.234867388, 0.794654472, 0.559787084), vec3(-0.594394723, 0.187592474, 0.781987197),
     vec3(0.594394723, -0.187592474, -0.781987197));
+#ifndef BAKER_AD_HEMI9_AXES
+#define BAKER_AD_HEMI9_AXES BAKER_AD_HEMI9_AXES_UP
+#endif
 
 // The radiance arriving from d.
 vec3 bakerRadianceAdHemi9(vec4 t[7], vec3 d) {

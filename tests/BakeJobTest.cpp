@@ -67,7 +67,7 @@ TEST(BakeJob, TheCommandLineNamesTheFlagOfASetting) {
 // A basis a file names is the file's content, not a setting: its error names the file.
 TEST(BakeJob, AFilesUnknownBasisIsTheFilesErrorNotASetting) {
   try {
-    basisInFile("sh-l99", std::nullopt, "old.vdb");
+    basisInFile("sh-l99", {}, "old.vdb");
     FAIL() << "sh-l99 is not a basis";
   } catch (const SettingError& e) {
     FAIL() << "a setting error would print as a flag: " << e.what();

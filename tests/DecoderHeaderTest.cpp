@@ -94,7 +94,7 @@ TEST(DecoderHeader, MatchesTheLibraryForHighShOrders) {
 
 TEST(DecoderHeader, UsesTheSgSharpnessAndAxesOfTheMetadata) {
   for (const std::string& name : {"sg-5", "sg-9", "sg-64"}) {
-    const auto basis = makeBasis(name, 1.7);
+    const auto basis = makeBasis(name, {1.7});
     expectHeaderMatchesLibrary(*basis, importerDecoder(*basis));
   }
   EXPECT_FALSE(baker_decode::BasisDecoder("sg-9").valid()) << "sg-N needs its sharpness";

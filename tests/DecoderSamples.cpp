@@ -83,14 +83,12 @@ json vec(const Eigen::Vector3f& v) { return {v.x(), v.y(), v.z()}; }
 
 // What a radiance volume's reader needs of its metadata, and the library's readings of random
 // probes at random normals, views and roughness (the specular table only for bases it decodes).
-json radianceSamplesOf(const std::string& name, std::mt19937& rng) {
-  const baker::VolumeReconstruction library(baker::makeBasis(name), baker::StoredSignal::Radiance);
+json radianceSamplesOf(std::unique_ptr<baker::Basis> basis, std::mt19937& rng) {
+  const baker::VolumeReconstruction library(std::move(basis), baker::StoredSignal::Radiance);
   const json set = baker::reconstructionData(library.basis(), baker::StoredSignal::Radiance)["function_sets"][0];
-  json entry = {{"basis", name}, {"diffuse_response", set["diffuse_response"]}};
-  if (set["type"] == "spherical-gaussians") {
-    entry["sharpness"] = set["sharpness"];
-    entry["axes"] = set["axes"];
-  }
+  json entry = {{"basis", library.basis().name()}, {"diffuse_response", set["diffuse_response"]}};
+  if (set["type"] == "spherical-gaussians") entry["sharpness"] = set["sharpness"];
+  if (set.contains("axes")) entry["axes"] = set["axes"];
   if (set["diffuse_response"].is_null()) return entry;
   const json blend = baker::specularBlendOf(library.basis())->describe();
   entry["specular"] = {{"diffuse_weight", blend["diffuse_weight"]}, {"albedo", blend["albedo"]}};
@@ -233,9 +231,11 @@ int main(int argc, char** argv) {
   }
   if (argc > 1 && std::string(argv[1]) == "radiance") {
     json all = json::array();
-    std::vector<std::string> names = baker::basisNames();
-    names.push_back("ad-hemi9");  // radiance only, so not listed
-    for (const std::string& name : names) all.push_back(radianceSamplesOf(name, rng));
+    for (const std::string& name : baker::basisNames()) all.push_back(radianceSamplesOf(baker::makeBasis(name), rng));
+    // Radiance only, so not listed: about +Y, where the decoders' own axes serve, and about a wall's
+    // axis, where they take the file's.
+    all.push_back(radianceSamplesOf(baker::makeBasis("ad-hemi9"), rng));
+    all.push_back(radianceSamplesOf(baker::makeBasis("ad-hemi9", {std::nullopt, Eigen::Vector3d(0.6, 0.0, -0.8)}), rng));
     std::cout << all.dump() << "\n";
     return 0;
   }

@@ -52,7 +52,7 @@ Volume positiveVolume(const Basis& basis, unsigned seed, const Eigen::Vector3i& 
                                                                : level + 0.5f * float(values[i]);
     }
   v.settings["rays"] = "64";
-  for (const auto& [name, value] : basis.parameters()) v.settings[name] = std::to_string(value);
+  for (const auto& [name, value] : parameterSettings(basis.parameters())) v.settings[name] = value;
   return v;
 }
 

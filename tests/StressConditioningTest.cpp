@@ -36,7 +36,7 @@ std::string refusalOf(const SphericalFunctions& functions, const std::string& la
 // noticed. At 1e6 it even looked singular.
 TEST(StressConditioning, SgLobesTooSharpToIntegrateAreRefused) {
   for (double sharpness : {1e3, 1e6}) {
-    const auto basis = makeBasis("sg-64", sharpness);
+    const auto basis = makeBasis("sg-64", {sharpness});
     const std::string message = refusalOf(basis->functions(0), basis->name());
     EXPECT_NE(message.find("too sharp to integrate exactly"), std::string::npos) << message;
     EXPECT_NE(message.find(fmt::format("with sharpness {}", sharpness)), std::string::npos) << message;
@@ -46,7 +46,7 @@ TEST(StressConditioning, SgLobesTooSharpToIntegrateAreRefused) {
 
 // Broad lobes all look alike: the Gram matrix is singular to working precision.
 TEST(StressConditioning, SgLobesTooBroadToTellApartAreRefused) {
-  const auto basis = makeBasis("sg-64", 0.1);
+  const auto basis = makeBasis("sg-64", {0.1});
   const std::string message = refusalOf(basis->functions(0), basis->name());
   EXPECT_NE(message.find("numerically singular"), std::string::npos) << message;
   EXPECT_NE(message.find("too broad or too alike"), std::string::npos) << message;

@@ -114,7 +114,7 @@ AccuracyStudy measureAccuracy(const BakeJob& job, AccuracyPlan plan, const std::
 
     for (const std::string& name : plan.bases)
       for (int rays : plan.rays) {
-        const VolumeReconstruction reading(makeBasis(name, job.request().sgSharpness), settings.projection.signal);
+        const VolumeReconstruction reading(makeBasis(name, job.request().basisParameters()), settings.projection.signal);
         settings.rays = rays;
         const auto start = std::chrono::steady_clock::now();
         BakeStats stats;

@@ -129,9 +129,7 @@ std::vector<EnvironmentSpecularScore> scoreSpecularOnEnvironment(const Basis& ba
   // A relative error needs light to be relative to.
   if (!(diffuseReference.mean() > 0.0))
     throw InputError(fmt::format("{}: no light reaches the surfaces read, so there is no error to measure relative to it", path));
-  const auto parameters = basis.parameters();
-  const auto sharpness = parameters.count("sg_sharpness") ? std::optional<double>(parameters.at("sg_sharpness")) : std::nullopt;
-  const VolumeReconstruction reading(makeBasis(basis.name(), sharpness), StoredSignal::Radiance);
+  const VolumeReconstruction reading(makeBasisLike(basis), StoredSignal::Radiance);
   std::vector<EnvironmentSpecularScore> scores;
   for (FitMethod method : {FitMethod::Linear, FitMethod::NonNegative}) {
     if (!fitApplies(basis, method)) continue;
