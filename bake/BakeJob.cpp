@@ -32,6 +32,8 @@ BakeSettings bakeSettings(const BakeRequest& request, std::vector<PlannedEffect>
   settings.projection.nonNegative = request.nonNegative;
   settings.projection.signal = parseStoredSignal(request.signal);
   settings.transport = transportSettings(plan, request.bounces, request.seed);
+  // Adaptive levels hold none yet (BakeRequest::distanceMap).
+  settings.distanceMapSize = request.adaptive() ? 0 : request.distanceMap;
   return settings;
 }
 
@@ -66,14 +68,14 @@ void recordSettings(const BakeJob& job, Volume& volume) {
 
 // The grid at the default spacing (volume/ProbeGrid.h), widened until it fits this machine's
 // memory and the probe limit; `reason` says how the spacing was chosen, for the plan.
-ProbeGrid defaultGrid(const Eigen::AlignedBox3f& bounds, const Basis& basis, std::string& reason) {
+ProbeGrid defaultGrid(const Eigen::AlignedBox3f& bounds, const Basis& basis, int distanceValues, std::string& reason) {
   const double longest = bounds.isEmpty() ? 0.0 : double(bounds.sizes().maxCoeff());
   double spacing = defaultSpacing(bounds);
   reason = spacing < kDefaultMaxSpacing ? fmt::format("the default: the scene's longest side ({:.4g} m) / {}", longest,
                                                       kDefaultProbesAlongLongestSide)
                                         : fmt::format("the default: {} m at most, in a scene {:.4g} m long",
                                                       kDefaultMaxSpacing, longest);
-  const double bytesPerProbe = volumeMemoryBytes(1.0, basis);
+  const double bytesPerProbe = volumeMemoryBytes(1.0, basis, distanceValues);
   const double memoryProbes = double(physicalMemoryBytes()) / bytesPerProbe;
   const double limit = std::min(double(kMaxBakeProbes), memoryProbes);
   const double firstSpacing = spacing;
@@ -118,7 +120,8 @@ BakeJob::BakeJob(BakeRequest request, RayObserver* observer) : request_(std::mov
     grid_ = makeProbeGrid(scene_->bounds, *request_.spacing, kMaxBakeProbes);
     spacingReason_ = "as given";
   } else {
-    grid_ = defaultGrid(scene_->bounds, *basis_, spacingReason_);
+    grid_ = defaultGrid(scene_->bounds, *basis_, DistanceMapLayout{request_.distanceMap, 0.0}.valuesPerProbe(),
+                        spacingReason_);
   }
   plan_ = planEffects(*scene_, takeCensus(*scene_));
   turnOffEffects(plan_, request_.turnedOff);

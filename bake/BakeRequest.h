@@ -7,6 +7,7 @@
 #include "basis/BasisParameters.h"
 #include "basis/GramOperators.h"
 #include "scene/SceneOptions.h"
+#include "volume/DistanceMoments.h"
 #include "volume/LevelGrids.h"
 #include "volume/Shard.h"
 
@@ -17,6 +18,7 @@ constexpr int kMaxRaysPerProbe = 1 << 20;
 constexpr std::int64_t kMaxBakeProbes = std::int64_t(1) << 27;  // a grid beyond it is refused before tracing
 constexpr int kMaxBounces = 64;
 constexpr int kDefaultBounces = 3;
+constexpr int kMinDistanceMap = 2, kMaxDistanceMap = 16;
 constexpr const char* kDefaultBasis = "sh-l2";
 constexpr const char* kDefaultQuality = "default";
 
@@ -43,6 +45,9 @@ struct BakeRequest {
   // What the coefficients hold: "irradiance" (E(n), one lookup per normal) or "radiance" (L(ω),
   // from which readers reconstruct irradiance by each function's diffuse response; basis/StoredSignal.h).
   std::string signal = "irradiance";
+  // Texels per side of each probe's map of distances to the first surface, for leak-aware
+  // sampling (volume/DistanceMoments.h); 0: none. Uniform placement only.
+  int distanceMap = DistanceMapLayout::kDefaultSize;
   // Bake only this shard's bricks (volume/Shard.h), a part for merging; none: the whole grid.
   std::optional<Shard> shard;
   // "uniform": one grid at `spacing`. "adaptive": `levels` nested levels (volume/LevelGrids.h),

@@ -23,11 +23,11 @@ constexpr int kRotations = 8;
 int rotationOf(int i, int j, int k) { return (i & 1) + 2 * (j & 1) + 4 * (k & 1); }
 
 // The probes of brick `brick`: placed (moved out of geometry, or marked invalid) and traced,
-// their coefficients and sky visibility written into `volume`.
+// their coefficients, sky visibility and distance moments written into `volume`.
 void bakeBrick(const RayTracer& tracer, const BakeSettings& settings, const ProbeBaker& probeBaker,
                const std::vector<Eigen::Vector3f>& testDirections, std::int64_t brick, std::uint64_t firstId,
                Volume& volume, RayCounts& counts, RoundTally& tally, std::vector<float>& coefficients,
-               std::vector<float>& visibility) {
+               std::vector<float>& visibility, std::vector<float>& distances) {
   const ProbeGrid& grid = volume.grid;
   std::vector<ProbeTask> candidates;
   std::vector<std::int64_t> rows;  // each candidate's row in the volume's arrays
@@ -63,8 +63,12 @@ void bakeBrick(const RayTracer& tracer, const BakeSettings& settings, const Prob
     }
   coefficients.resize(tasks.size() * volume.coefficientsPerProbe);
   visibility.resize(tasks.size() * volume.visibilityPerProbe);
-  probeBaker.bake(tasks, coefficients.data(), visibility.data(), &counts, nullptr, &tally);
+  const std::size_t perProbe = std::size_t(volume.distanceMomentsPerProbe());
+  distances.resize(tasks.size() * perProbe);
+  probeBaker.bake(tasks, coefficients.data(), visibility.data(), &counts, nullptr, &tally,
+                  {volume.distanceMap, perProbe > 0 ? distances.data() : nullptr});
   for (std::size_t t = 0; t < tasks.size(); ++t) {
+    std::copy_n(distances.data() + t * perProbe, perProbe, volume.distanceMoments.data() + taskRows[t] * perProbe);
     std::copy_n(coefficients.data() + t * volume.coefficientsPerProbe, volume.coefficientsPerProbe,
                 volume.coefficients.data() + taskRows[t] * volume.coefficientsPerProbe);
     std::copy_n(visibility.data() + t * volume.visibilityPerProbe, volume.visibilityPerProbe,
@@ -121,6 +125,11 @@ Volume BrickBaker::emptyVolume(const ProbeGrid& grid, const ProbeRows& rows) con
   volume.visibility.assign(probes * volume.visibilityPerProbe, 0.0f);
   volume.states.assign(probes, ProbeState::Invalid);
   volume.offsets.assign(probes, Eigen::Vector3f::Zero());
+  // Probes inside geometry keep zeros: every point lies beyond them, so leak-aware reading drops them.
+  if (settings_.distanceMapSize > 0) {
+    volume.distanceMap = {settings_.distanceMapSize, DistanceMapLayout::kCapSpacings * grid.spacing};
+    volume.distanceMoments.assign(probes * std::size_t(volume.distanceMomentsPerProbe()), 0.0f);
+  }
   return volume;
 }
 
@@ -131,10 +140,10 @@ void BrickBaker::bake(Volume& volume, const std::vector<std::int64_t>& bricks, s
   std::vector<RayCounts> brickRays(brickCount);
   std::vector<RoundTally> brickTallies(brickCount);
   tbb::parallel_for(tbb::blocked_range<int>(0, brickCount, 1), [&](const tbb::blocked_range<int>& range) {
-    std::vector<float> coefficients, visibility;
+    std::vector<float> coefficients, visibility, distances;
     for (int n = range.begin(); n < range.end(); ++n) {
       bakeBrick(tracer_, settings_, *probeBaker_, testDirections_, bricks[n], firstId, volume, brickRays[n],
-                brickTallies[n], coefficients, visibility);
+                brickTallies[n], coefficients, visibility, distances);
       if (brickDone) brickDone();
     }
   });
@@ -167,7 +176,7 @@ Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basi
                   const std::function<void(std::int64_t, std::int64_t)>& progress,
                   const std::optional<Shard>& shard) {
   if (settings.rays <= 0) throw SettingError("rays", fmt::format("must be positive, got {}", settings.rays));
-  requireVolumeFitsInMemory(grid, shard ? shard->count : 1, basis, physicalMemoryBytes());
+  requireVolumeFitsInMemory(grid, shard ? shard->count : 1, basis, physicalMemoryBytes(), settings.distanceValuesPerProbe());
   const std::vector<std::int64_t> toBake = bricksToBake(grid, shard);
   const BrickBaker baker(scene, tracer, basis, settings);
   const auto start = std::chrono::steady_clock::now();

@@ -177,7 +177,7 @@ const SurfacePoint& PathIntegrator::surfaceAt(const Hit& hit, SurfacePoint* loca
 
 void PathIntegrator::trace(const Eigen::Vector3f& position, std::uint64_t probeId, const Eigen::Vector3f* directions,
                            int count, Eigen::Vector3f* radiance, float* visibility, RayCounts* counts,
-                           const ProbeView* directView) const {
+                           const ProbeView* directView, float* hitDistance) const {
   const Environment& sky = scene_.environment;
   const bool seeSky = settings_.environment && sky.emits();
   thread_local Scratch scratch;
@@ -195,6 +195,7 @@ void PathIntegrator::trace(const Eigen::Vector3f& position, std::uint64_t probeI
       const Hit& hit = hits[i];
       radiance[ray].setZero();
       visibility[ray] = hit.missed() ? 1.0f : 0.0f;
+      if (hitDistance) hitDistance[ray] = hit.missed() ? std::numeric_limits<float>::infinity() : hit.distance;
       if (hit.missed()) {
         if (seeSky) {
           radiance[ray] = sky.radiance(directions[ray]);

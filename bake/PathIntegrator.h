@@ -36,10 +36,11 @@ class PathIntegrator {
   // radiance[i] and visibility[i] for directions[i], i < count. The random numbers of ray i
   // depend only on (settings.seed, probeId, i). With `directView`, the directions are the
   // probe's lattice and what it samples by importance is weighted by the lattice's MIS share:
-  // the sky seen, the emission of a first hit and punctual lights' next-event term there.
+  // the sky seen, the emission of a first hit and punctual lights' next-event term there. With
+  // `hitDistance`, hitDistance[i] is how far ray i went to its first hit (+∞ when it escaped).
   void trace(const Eigen::Vector3f& position, std::uint64_t probeId, const Eigen::Vector3f* directions, int count,
              Eigen::Vector3f* radiance, float* visibility, RayCounts* counts,
-             const ProbeView* directView = nullptr) const;
+             const ProbeView* directView = nullptr, float* hitDistance = nullptr) const;
 
   const EmitterSampler& emitters() const { return emitters_; }
   const LightAim& lightAim() const { return lightAim_; }

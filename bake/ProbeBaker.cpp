@@ -11,6 +11,7 @@
 #include <cmath>
 #include <mutex>
 #include <numeric>
+#include <optional>
 
 #include "bake/PathRandom.h"
 #include "bake/ScratchBuffer.h"
@@ -255,7 +256,7 @@ ProbeBaker::~ProbeBaker() = default;
 ProbeBaker::Rounds ProbeBaker::traceRounds(const ProbeTask& task, const std::vector<PunctualAtProbe::Arrival>& lights,
                                            std::vector<PunctualAtProbe::Arrival>* direct, Eigen::MatrixXd& latticeExpansion,
                                            int taskIndex, int batchSize, RayCounts* counts,
-                                           ProbeSamples* samples) const {
+                                           ProbeSamples* samples, DistanceMomentsAccumulator* distances) const {
   const ConvergenceSettings& convergence = settings_.convergence;
   const ColorSpace space = basis_.colorSpace();
   RoundStatistics::AxisIrradiance punctualPart = RoundStatistics::AxisIrradiance::Zero();
@@ -263,7 +264,7 @@ ProbeBaker::Rounds ProbeBaker::traceRounds(const ProbeTask& task, const std::vec
   RoundStatistics statistics(punctualPart);
 
   thread_local std::vector<Eigen::Vector3f> directions, radiance;
-  thread_local std::vector<float> sky;
+  thread_local std::vector<float> sky, hitDistance;
   thread_local std::vector<double> y;
   thread_local std::vector<PunctualAtProbe::Arrival> latticeDirect;
   const SphericalFunctions& expansion = *directExpansion_;
@@ -282,6 +283,7 @@ ProbeBaker::Rounds ProbeBaker::traceRounds(const ProbeTask& task, const std::vec
     directions.resize(rays);
     radiance.resize(rays);
     sky.resize(rays);
+    hitDistance.resize(rays);
     const ProbeView view = directView_.at(task.position, rays);
     RoundStatistics::AxisIrradiance estimates[2];
     for (int half = 0; half < 2; ++half) {
@@ -289,7 +291,10 @@ ProbeBaker::Rounds ProbeBaker::traceRounds(const ProbeTask& task, const std::vec
       const std::uint64_t id = latticeProbeId(task.id, lattice);
       const Eigen::Matrix3d turn = latticeRotation(settings_.transport.seed, task.id, lattice).cast<double>();
       for (int r = 0; r < rays; ++r) directions[r] = (turn * unturned.directions[r]).normalized().cast<float>();
-      integrator_.trace(task.position, id, directions.data(), rays, radiance.data(), sky.data(), counts, &view);
+      integrator_.trace(task.position, id, directions.data(), rays, radiance.data(), sky.data(), counts, &view,
+                        distances ? hitDistance.data() : nullptr);
+      // Every ray of every round weighs the same, as in the sums below.
+      if (distances) distances->add(directions.data(), hitDistance.data(), rays);
       latticeDirect.clear();
       if (!directView_.empty()) directView_.sample(view, id, &latticeDirect, counts);
       estimates[half] = latticeIrradiance(directions.data(), unturned.weights, radiance.data(), latticeDirect);
@@ -376,7 +381,7 @@ struct ProbeBaker::RotationBlocks {
 
 void ProbeBaker::traceLattice(const ProbeTask& task, const RotationBlocks& rotations, int s, SampleColumns& columns,
                               std::vector<PunctualAtProbe::Arrival>* direct, RayCounts* counts,
-                              ProbeSamples* samples) const {
+                              ProbeSamples* samples, DistanceMomentsAccumulator* distances) const {
   const int rays = settings_.rays;
   thread_local std::vector<Eigen::Vector3f> radiance;
   thread_local std::vector<float> sky;
@@ -386,7 +391,11 @@ void ProbeBaker::traceLattice(const ProbeTask& task, const RotationBlocks& rotat
   const std::vector<Eigen::Vector3f>& dirs = directions_[block.rotation];
   const int within = s - block.first;
   const ProbeView view = directView_.at(task.position, rays);
-  integrator_.trace(task.position, task.id, dirs.data(), rays, radiance.data(), sky.data(), counts, &view);
+  thread_local std::vector<float> hitDistance;
+  hitDistance.resize(rays);
+  integrator_.trace(task.position, task.id, dirs.data(), rays, radiance.data(), sky.data(), counts, &view,
+                    distances ? hitDistance.data() : nullptr);
+  if (distances) distances->add(dirs.data(), hitDistance.data(), rays);
   const int base = 4 * block.first;
   for (int r = 0; r < rays; ++r) {
     const Eigen::Vector3f value = toColorSpace(basis_.colorSpace(), radiance[r]);
@@ -481,7 +490,8 @@ void ProbeBaker::constrainNonNegative(int p, float* coefficients, float* visibil
 }
 
 void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, float* visibility, RayCounts* counts,
-                      std::vector<ProbeSamples>* samples, RoundTally* tally) const {
+                      std::vector<ProbeSamples>* samples, RoundTally* tally,
+                      const DistanceMomentsOutput& distances) const {
   const int p = int(tasks.size());
   const bool adaptive = settings_.convergence.adaptive();
   if (samples) samples->assign(p, {});
@@ -508,19 +518,26 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
     tbb::parallel_for(tbb::blocked_range<int>(0, p, kProbesPerTask), [&](const tbb::blocked_range<int>& range) {
       RayCounts rangeCounts;
       RoundTally rangeTally;
+      std::optional<DistanceMomentsAccumulator> moments;
+      if (distances.values) moments.emplace(distances.layout);
       for (int s = range.begin(); s < range.end(); ++s) {
         const int taskIndex = rotations.order[s];
         const ProbeTask& task = tasks[taskIndex];
         ProbeSamples* probeSamples = samples ? &(*samples)[taskIndex] : nullptr;
         std::vector<PunctualAtProbe::Arrival> lights, direct;
         if (punctualAtProbe) lights = punctual_.visibleLights(task.position, &rangeCounts);
+        DistanceMomentsAccumulator* probeMoments = moments ? &*moments : nullptr;
+        if (probeMoments) probeMoments->reset();
         if (adaptive) {
-          const Rounds rounds = traceRounds(task, lights, &direct, latticeExpansion, taskIndex, p, &rangeCounts, probeSamples);
+          const Rounds rounds = traceRounds(task, lights, &direct, latticeExpansion, taskIndex, p, &rangeCounts,
+                                            probeSamples, probeMoments);
           rangeTally.add(rounds.rays, !rounds.converged);
         } else {
-          traceLattice(task, rotations, s, columns, &direct, &rangeCounts, probeSamples);
+          traceLattice(task, rotations, s, columns, &direct, &rangeCounts, probeSamples, probeMoments);
           rangeTally.add(settings_.rays, false);
         }
+        if (probeMoments)
+          probeMoments->write(distances.values + std::size_t(taskIndex) * distances.layout.valuesPerProbe());
         punctualArrivals.add(lights, taskIndex, basis_.colorSpace());
         directArrivals.add(direct, taskIndex, basis_.colorSpace());
         if (probeSamples) {

@@ -19,6 +19,7 @@
 #include "basis/StoredSignal.h"
 #include "scene/RayTracer.h"
 #include "scene/Scene.h"
+#include "volume/DistanceMoments.h"
 
 namespace baker {
 
@@ -31,6 +32,9 @@ struct ProjectionOptions {
 
 struct BakeSettings {
   int rays = 256;  // a fixed count, or with adaptive convergence the size of round 0's lattices
+  // Texels per side of each probe's distance map (volume/DistanceMoments.h); 0: none.
+  int distanceMapSize = 0;
+  int distanceValuesPerProbe() const { return DistanceMapLayout{distanceMapSize, 0.0}.valuesPerProbe(); }
   ConvergenceSettings convergence;
   ProjectionOptions projection;
   TransportSettings transport;
@@ -42,6 +46,13 @@ struct ProbeTask {
   Eigen::Vector3f position{0.0f, 0.0f, 0.0f};
   std::uint64_t id = 0;
   int rotation = 0;
+};
+
+// Where a bake writes each probe's distance moments (volume/DistanceMoments.h): values per task,
+// layout.valuesPerProbe() of them. None when `values` is null.
+struct DistanceMomentsOutput {
+  DistanceMapLayout layout{0, 0.0};
+  float* values = nullptr;
 };
 
 // What a probe's rays brought back, for tools that look at one probe (`baker probe`).
@@ -128,9 +139,11 @@ class ProbeBaker {
 
   // coefficients: tasks.size() × coefficientsPerProbe(); visibility: × visibilityPerProbe().
   // `samples`, when given, receives each task's samples; `tally` hears how many lattice
-  // directions the probes took.
+  // directions the probes took; `distances`, when it has values, each probe's distance moments
+  // from its lattice rays (no ray is traced for them).
   void bake(const std::vector<ProbeTask>& tasks, float* coefficients, float* visibility, RayCounts* counts,
-            std::vector<ProbeSamples>* samples = nullptr, RoundTally* tally = nullptr) const;
+            std::vector<ProbeSamples>* samples = nullptr, RoundTally* tally = nullptr,
+            const DistanceMomentsOutput& distances = {}) const;
 
  private:
   struct ChannelGroup;
@@ -151,12 +164,14 @@ class ProbeBaker {
   // when given.
   Rounds traceRounds(const ProbeTask& task, const std::vector<PunctualAtProbe::Arrival>& lights,
                      std::vector<PunctualAtProbe::Arrival>* direct, Eigen::MatrixXd& latticeExpansion, int taskIndex,
-                     int batchSize, RayCounts* counts, ProbeSamples* samples) const;
+                     int batchSize, RayCounts* counts, ProbeSamples* samples,
+                     DistanceMomentsAccumulator* distances) const;
   void fitRoundsByLeastSquares(const Eigen::MatrixXd& sampledGram, Eigen::MatrixXd& latticeExpansion, int taskIndex,
                                int batchSize) const;
   // The probe's fixed lattice, traced into its columns, with its direct-view samples.
   void traceLattice(const ProbeTask& task, const RotationBlocks& rotations, int s, SampleColumns& columns,
-                    std::vector<PunctualAtProbe::Arrival>* direct, RayCounts* counts, ProbeSamples* samples) const;
+                    std::vector<PunctualAtProbe::Arrival>* direct, RayCounts* counts, ProbeSamples* samples,
+                    DistanceMomentsAccumulator* distances) const;
   void projectLattice(const SampleColumns& columns, const RotationBlocks& rotations, float* coefficients,
                       float* visibility) const;
   void projectLatticeExpansion(Eigen::MatrixXd& latticeExpansion, int p, float* coefficients, float* visibility) const;

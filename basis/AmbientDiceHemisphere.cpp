@@ -12,11 +12,13 @@ namespace {
 
 // The shortest rotation from +Y to `axis` (unit), and the half turn about +X for −Y.
 Eigen::Matrix3d upTo(const Eigen::Vector3d& axis) {
-  const Eigen::Vector3d turnAbout = Eigen::Vector3d::UnitY().cross(axis);
-  if (turnAbout.norm() == 0.0)
+  // Y × axis = (z, 0, −x); hypot keeps its length exact for the tiniest x and z.
+  const double across = std::hypot(axis.x(), axis.z());
+  if (across == 0.0)
     return axis.y() > 0.0 ? Eigen::Matrix3d::Identity() : Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()).toRotationMatrix();
   // atan2 keeps the angle exact near ±Y, where acos of y = 1 − ε loses it.
-  return Eigen::AngleAxisd(std::atan2(turnAbout.norm(), axis.y()), turnAbout.normalized()).toRotationMatrix();
+  const Eigen::Vector3d turnAbout(axis.z() / across, 0.0, -axis.x() / across);
+  return Eigen::AngleAxisd(std::atan2(across, axis.y()), turnAbout).toRotationMatrix();
 }
 
 }  // namespace

@@ -18,8 +18,8 @@ namespace baker {
 //
 // The lobes keep their whole extent, so each stays radial: one diffuse response and one specular
 // table serve all of them, and decoders evaluate them as they do ad-srbf. A bake fits them to
-// the upper hemisphere only (fitFunctions: the lobes cut off at the horizon), so radiance from
-// below is not held and reading there extrapolates.
+// the hemisphere about the axis only (fitFunctions: the lobes cut off at its horizon), so
+// radiance from beyond it is not held and reading there extrapolates.
 class HemisphereLobes : public SphericalFunctions {
  public:
   static constexpr int kLobes = 9;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "basis/NonNegativeProjection.h"
 #include "common/Error.h"
@@ -41,7 +42,8 @@ std::unique_ptr<Basis> makeBasis(const std::string& name, const BasisParameters&
     if (!(axis->allFinite() && axis->norm() > 0.0))
       throw SettingError("hemisphere_axis", fmt::format("must be a finite direction, not zero, got {},{},{}", axis->x(),
                                                         axis->y(), axis->z()));
-    axis->normalize();
+    // A unit axis (as a volume records it) is kept bit for bit: normalising again can move its last bit.
+    if (std::abs(axis->squaredNorm() - 1.0) > 4.0 * std::numeric_limits<double>::epsilon()) axis->normalize();
   }
   for (const BasisFamily& family : families()) {
     std::unique_ptr<Basis> basis = family.make(name, parameters);

@@ -46,6 +46,11 @@ void addBakeOptions(CLI::App& app, BakeOptions& o, bool listed) {
                  "ringing around bright small sources); default: none");
   app.add_flag("--non-negative", r.nonNegative,
                "solve for coefficients >= 0 per probe instead of the linear projection");
+  app.add_option("--distance-map", r.distanceMap,
+                 "texels per side of each probe's octahedral map of distances to the nearest surfaces, which "
+                 "`baker sample --leak-aware` reads to keep light from leaking through walls; 0: none "
+                 "(uniform placement only)")
+      ->capture_default_str();
   app.add_option("--signal", r.signal,
                  "what the coefficients hold: irradiance (E(n), one lookup per normal) or radiance (L(ω), whose "
                  "irradiance `baker sample` reconstructs from each function's diffuse response)")
@@ -87,7 +92,7 @@ std::unique_ptr<BakeJob> prepareBake(const CLI::App& app, const BakeOptions& opt
   const int shards = job->request().shard ? job->request().shard->count : 1;
   log << fmt::format("grid: {} × {} × {} = {} probes, spacing {:.4g} m ({}), {:.3g} GiB at the peak{}\n", g.dims.x(),
                      g.dims.y(), g.dims.z(), g.probeCount(), g.spacing, job->spacingReason(),
-                     bakeMemoryBytes(g, shards, job->basis()) / double(1ull << 30),
+                     bakeMemoryBytes(g, shards, job->basis(), job->settings().distanceValuesPerProbe()) / double(1ull << 30),
                      shards > 1 ? " per shard (the merge, or rank 0 under MPI, holds the whole volume)" : "");
   if (job->placement()) printPlacement(log, *job);
   printPlan(log, job->plan());

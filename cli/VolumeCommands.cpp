@@ -15,6 +15,7 @@
 #include "formats/VolumeReader.h"
 #include "formats/VolumeReconstruction.h"
 #include "formats/VolumeSampler.h"
+#include "volume/LeakAwareInterpolation.h"
 
 namespace baker {
 namespace {
@@ -83,6 +84,17 @@ nlohmann::json specularJson(const std::optional<SpecularRequest>& request, const
           {"diffuse_weight", s.diffuseWeight}};
 }
 
+// Per probe held around the position: where it is in the grid, its trilinear weight and its leak factor.
+nlohmann::json probeWeightsJson(const ProbeInterpolation& interpolation, const LeakAwareCorner* corners) {
+  nlohmann::json weights = nlohmann::json::array();
+  for (int n = 0; n < interpolation.corners; ++n)
+    if (interpolation.held[n] >= 0)
+      weights.push_back({{"probe", {corners[n].probe.x(), corners[n].probe.y(), corners[n].probe.z()}},
+                         {"trilinear", corners[n].trilinear},
+                         {"leak", corners[n].leak}});
+  return weights;
+}
+
 }  // namespace
 
 int runSampleCommand(int argc, char** argv) {
@@ -94,6 +106,11 @@ int runSampleCommand(int argc, char** argv) {
   app.add_option("--normal", normalText, "surface normal x,y,z (normalised here)")->required();
   SpecularFlags specularFlags;
   specularFlags.addTo(app);
+  bool leakAware = false;
+  app.add_flag("--leak-aware", leakAware,
+               "weigh the eight probes by what their distance maps say: a probe that a wall hides from the position, "
+               "or that lies behind its surface, counts for little (Chebyshev test and back-face weight, "
+               "docs/LEAKS.md); trilinear where nothing hides them");
   app.add_flag("--json", json, "print the result as JSON on stdout");
   return runGuarded("baker sample", app, argc, argv, [&]() {
     const Eigen::Vector3d position = parseTriple("--at", at);
@@ -104,11 +121,18 @@ int runSampleCommand(int argc, char** argv) {
     // The finest level whose probes around the position are all held, as an engine picks it.
     const LevelChoice choice = finestLevelAt(levels.levels, int(levels.levels.size()), position);
     const Volume& volume = levels.levels[std::size_t(choice.level)];
+    if (leakAware && volume.distanceMomentsPerProbe() == 0)
+      throw InputError(fmt::format("{}: holds no distance moments, which --leak-aware reads (bake it again with "
+                                   "--placement uniform and --distance-map above 0)",
+                                   path));
+    ProbeInterpolation interpolation = choice.interpolation;
+    LeakAwareCorner corners[8];
+    const bool reweighed = leakAware && weighAgainstLeaks(volume, position, normal, interpolation, corners);
     VolumeSample s;
-    s.gridPosition = choice.interpolation.gridPosition;
+    s.gridPosition = interpolation.gridPosition;
     s.coefficients.resize(std::size_t(volume.coefficientsPerProbe));
     s.visibility.resize(std::size_t(volume.visibilityPerProbe));
-    choice.interpolation.apply(volume, !choice.interpolation.complete(), s.coefficients.data(), s.visibility.data());
+    interpolation.apply(volume, reweighed || !interpolation.complete(), s.coefficients.data(), s.visibility.data());
     const Eigen::Vector3f e = reading.irradiance(s.coefficients.data(), normal);
     const bool hasVisibility = volume.visibilityPerProbe > 0;
     const double sky = hasVisibility ? reading.skyVisibility(s.visibility.data(), normal) : 0.0;
@@ -126,6 +150,8 @@ int runSampleCommand(int argc, char** argv) {
                           {"coefficients", s.coefficients}};
       j["sky_visibility"] = hasVisibility ? nlohmann::json(sky) : nlohmann::json(nullptr);
       j["specular"] = glossy;
+      j["leak_aware"] = leakAware;
+      if (leakAware) j["probe_weights"] = probeWeightsJson(interpolation, corners);
       std::cout << j.dump(2) << "\n";
     } else {
       std::cout << fmt::format("irradiance E = ({:.6g}, {:.6g}, {:.6g}) at ({}, {}, {}) for normal ({:.4f}, {:.4f}, "
@@ -158,7 +184,7 @@ int runInspectCommand(int argc, char** argv) {
     const std::unique_ptr<Basis> basis = basisOf(v);
     const ProbeGrid& g = v.grid;
     nlohmann::json grids = nlohmann::json::array();
-    for (const VolumeGrid& grid : volumeGrids(*basis, v.visibilityPerProbe, v.hasProbeStates())) {
+    for (const VolumeGrid& grid : volumeGrids(*basis, v.visibilityPerProbe, v.hasProbeStates(), v.distanceMomentsPerProbe())) {
       float lo = std::numeric_limits<float>::infinity(), hi = -lo;
       for (const Volume& level : volume.levels)
         for (std::int64_t row = 0; row < level.rows.count(level.grid); ++row) {

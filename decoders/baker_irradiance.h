@@ -672,6 +672,74 @@ inline void blendProbes(const float* const probes[8], const double weight[8], in
 }
 
 // ---------------------------------------------------------------------------------------------
+// Leak-aware weights (docs/LEAKS.md): a volume with "baker.distance_map" holds per probe an N × N
+// octahedral map of the mean and mean squared distance to the first surface, in units of the
+// map's cap (grids distance_moments_NNN: value 2t and 2t + 1 of texel t = i + N·j). Multiply each
+// corner's trilinear weight by leakWeight() and divide by the sum of the products.
+
+struct DistanceMap {
+  int size = 8;      // "size"
+  double cap = 1.0;  // "cap", world units
+};
+
+// Octahedral coordinates in [0, 1]² of unit d, +Y up (the file's "encoding").
+inline void octahedralEncode(const Vec3& d, double uv[2]) {
+  const double l1 = std::fabs(d.x) + std::fabs(d.y) + std::fabs(d.z);
+  double px = d.x / l1, pz = d.z / l1;
+  if (d.y < 0.0) {
+    const double fx = (1.0 - std::fabs(pz)) * (px < 0.0 ? -1.0 : 1.0), fz = (1.0 - std::fabs(px)) * (pz < 0.0 ? -1.0 : 1.0);
+    px = fx, pz = fz;
+  }
+  uv[0] = 0.5 * (px + 1.0), uv[1] = 0.5 * (pz + 1.0);
+}
+
+// The weight in (0, 1] of the probe baked at `probe` (grid position plus its probe_offset) with
+// distance moments `moments` (2·size² values), for a shading point on a surface of unit `normal`:
+// 1 where its map reads open towards the point, else the back-face weight times Chebyshev's bound.
+inline double leakWeight(const DistanceMap& map, const float* moments, const Vec3& probe, const Vec3& point,
+                         const Vec3& normal, double spacing) {
+  const Vec3 biased = point + (0.25 * spacing) * normal;
+  const Vec3 fromProbe = biased + (-1.0) * probe;
+  const double r = std::sqrt(dot(fromProbe, fromProbe));
+  if (!(r > 0.0)) return 1.0;
+  const Vec3 direction = (1.0 / r) * fromProbe;
+  double uv[2];
+  octahedralEncode(direction, uv);
+  const int n = map.size;
+  int low[2];
+  double f[2];
+  for (int a = 0; a < 2; ++a) {
+    const double x = uv[a] * n - 0.5;
+    low[a] = int(std::floor(x));
+    low[a] = low[a] < 0 ? 0 : low[a] > n - 2 ? n - 2 : low[a];
+    f[a] = std::fmin(std::fmax(x - low[a], 0.0), 1.0);
+  }
+  double mean = 0.0, meanSquare = 0.0;
+  bool open = true;
+  for (int corner = 0; corner < 4; ++corner) {
+    const int di = corner & 1, dj = corner >> 1;
+    const double w = (di ? f[0] : 1.0 - f[0]) * (dj ? f[1] : 1.0 - f[1]);
+    const int t = low[0] + di + n * (low[1] + dj);
+    mean += w * moments[2 * t];
+    meanSquare += w * moments[2 * t + 1];
+    if (w > 0.0 && moments[2 * t] < 1.0f) open = false;
+  }
+  if (open) return 1.0;
+  mean *= map.cap;
+  meanSquare *= map.cap * map.cap;
+  const double facing = 0.5 * (1.0 - dot(direction, normal));
+  double weight = (facing * facing + 0.2) / 1.2;
+  if (r > mean) {
+    const double variance = std::fabs(meanSquare - mean * mean), beyond = r - mean;
+    const double chebyshev = variance / (variance + beyond * beyond);
+    weight *= chebyshev * chebyshev * chebyshev;
+  }
+  weight = std::fmax(weight, 1e-6);
+  if (weight < 0.2) weight *= weight * weight / (0.2 * 0.2);
+  return weight;
+}
+
+// ---------------------------------------------------------------------------------------------
 // Adaptive volumes ("baker.levels" > 1, docs/ADAPTIVE.md): levels of probes, coarsest first, each
 // a grid as above holding only some bricks of 8³ probes (brick (bx, by, bz) holds probes
 // 8·bx … 8·bx + 7 along x, and so on), and of each brick only some of its eight sub-bricks of 4³

@@ -39,7 +39,9 @@ void requireKnownFormatVersion(const std::vector<std::pair<std::string, std::str
 
 Volume VolumeHeader::emptyVolume(const std::string& path, PartReading parts) const {
   requireKnownFormatVersion(text, path);
-  const std::unique_ptr<Basis> basis = basisInFile(basisName, {}, path);
+  Volume settingsOnly;
+  readSettings(text, settingsOnly);
+  const std::unique_ptr<Basis> basis = basisInFile(basisName, settingsOnly.settings, path);
   if (coefficientsPerProbe != basis->totalCoefficients())
     throw InputError(fmt::format("{}: baker.coefficients_per_probe is {}, but {} has {}", path, coefficientsPerProbe,
                                  basisName, basis->totalCoefficients()));
@@ -62,14 +64,16 @@ Volume VolumeHeader::emptyVolume(const std::string& path, PartReading parts) con
   // Half of the bake's estimate: reading holds the volume once (a part read as its own bricks
   // holds less, but the merge reading it holds the whole volume). Checked before allocating, so
   // that a damaged size is refused rather than exhausting memory.
-  const double needed = volumeMemoryBytes(std::min(heldProbes, gridProbes), *basis) / 2;
+  Volume volume;
+  readDistanceMap(text, volume, path);
+  const double needed =
+      volumeMemoryBytes(std::min(heldProbes, gridProbes), *basis, volume.distanceMomentsPerProbe()) / 2;
   if (needed > double(physicalMemoryBytes()))
     throw InputError(fmt::format("{}: baker.dims ({}, {}, {}) in {} would need {:.3g} GiB, more than this machine's "
                                  "memory", path, d.x(), d.y(), d.z(), basisName, needed / double(1ull << 30)));
   if (!(grid.spacing > 0.0) || !std::isfinite(grid.spacing))
     throw InputError(fmt::format("{}: baker.spacing must be a positive number, got {}", path, grid.spacing));
   if (!grid.origin.allFinite()) throw InputError(fmt::format("{}: baker.origin is not finite", path));
-  Volume volume;
   volume.grid = grid;
   volume.basisName = basisName;
   volume.coefficientsPerProbe = coefficientsPerProbe;
@@ -104,18 +108,25 @@ void requireFiniteValues(const Volume& v, const std::string& path) {
     if (!std::isfinite(v.visibility[i]))
       throw InputError(fmt::format("{}: probe {} has a non-finite visibility value", path,
                                    v.rows.probeAt(v.grid, std::int64_t(i / v.visibilityPerProbe))));
+  for (std::size_t i = 0; i < v.distanceMoments.size(); ++i)
+    if (!std::isfinite(v.distanceMoments[i]))
+      throw InputError(fmt::format("{}: probe {} has a non-finite distance moment", path,
+                                   v.rows.probeAt(v.grid, std::int64_t(i / v.distanceMomentsPerProbe()))));
   for (const Eigen::Vector3f& o : v.offsets)
     if (!o.allFinite()) throw InputError(fmt::format("{}: a probe offset is not finite", path));
 }
 
 std::unique_ptr<Basis> basisInFile(const std::string& name, const std::map<std::string, std::string>& settings,
                                    const std::string& where) {
-  const BasisParameters parameters = parametersFromSettings(settings);
+  const auto placed = [&](const std::string& message) {
+    return InputError(where.empty() ? message : fmt::format("{}: {}", where, message));
+  };
   try {
-    return makeBasis(name, parameters);
+    return makeBasis(name, parametersFromSettings(settings));
   } catch (const SettingError& e) {
-    const std::string field = e.setting() == "basis" ? e.what() : "baker.setting." + std::string(e.what());
-    throw InputError(where.empty() ? field : fmt::format("{}: {}", where, field));
+    throw placed(e.setting() == "basis" ? e.what() : "baker.setting." + std::string(e.what()));
+  } catch (const InputError& e) {
+    throw placed(e.what());
   }
 }
 

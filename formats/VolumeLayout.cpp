@@ -11,7 +11,8 @@
 
 namespace baker {
 
-std::vector<VolumeGrid> volumeGrids(const Basis& basis, int visibilityPerProbe, bool hasProbeStates) {
+std::vector<VolumeGrid> volumeGrids(const Basis& basis, int visibilityPerProbe, bool hasProbeStates,
+                                    int distanceMomentsPerProbe) {
   std::vector<VolumeGrid> grids;
   if (basis.channelsShareFunctions()) {
     for (int f = 0; f < basis.coefficientCount(0); ++f)
@@ -25,6 +26,8 @@ std::vector<VolumeGrid> volumeGrids(const Basis& basis, int visibilityPerProbe, 
   }
   for (int f = 0; f < visibilityPerProbe; ++f)
     grids.push_back({fmt::format("visibility_{:02}", f), VolumeGrid::Kind::Visibility, 1, {f, 0, 0}});
+  for (int f = 0; f < distanceMomentsPerProbe; ++f)
+    grids.push_back({fmt::format("distance_moments_{:03}", f), VolumeGrid::Kind::DistanceMoments, 1, {f, 0, 0}});
   if (hasProbeStates) {
     grids.push_back({"probe_state", VolumeGrid::Kind::ProbeState, 1, {0, 0, 0}});
     grids.push_back({"probe_offset", VolumeGrid::Kind::ProbeOffset, 3, {0, 1, 2}});
@@ -45,6 +48,8 @@ float gridValue(const Volume& v, const VolumeGrid& grid, int component, std::int
   switch (grid.kind) {
     case VolumeGrid::Kind::Coefficients: return v.coefficients[row * v.coefficientsPerProbe + grid.index[component]];
     case VolumeGrid::Kind::Visibility: return v.visibility[row * v.visibilityPerProbe + grid.index[component]];
+    case VolumeGrid::Kind::DistanceMoments:
+      return v.distanceMoments[row * v.distanceMomentsPerProbe() + grid.index[component]];
     case VolumeGrid::Kind::ProbeState: return float(v.states[row]);
     case VolumeGrid::Kind::ProbeOffset: return v.offsets[row][component];
   }
@@ -57,6 +62,9 @@ bool setGridValue(Volume& v, const VolumeGrid& grid, int component, std::int64_t
   switch (grid.kind) {
     case VolumeGrid::Kind::Coefficients: v.coefficients[row * v.coefficientsPerProbe + grid.index[component]] = value; break;
     case VolumeGrid::Kind::Visibility: v.visibility[row * v.visibilityPerProbe + grid.index[component]] = value; break;
+    case VolumeGrid::Kind::DistanceMoments:
+      v.distanceMoments[row * v.distanceMomentsPerProbe() + grid.index[component]] = value;
+      break;
     case VolumeGrid::Kind::ProbeState: v.states[row] = ProbeState(std::uint8_t(value)); break;
     case VolumeGrid::Kind::ProbeOffset: v.offsets[row][component] = value; break;
   }
@@ -67,6 +75,7 @@ void prepareForReading(Volume& v, bool hasProbeStates) {
   const std::size_t n = std::size_t(v.rows.count(v.grid));
   v.coefficients.assign(n * v.coefficientsPerProbe, 0.0f);
   v.visibility.assign(n * v.visibilityPerProbe, 0.0f);
+  v.distanceMoments.assign(n * std::size_t(v.distanceMomentsPerProbe()), 0.0f);
   v.states.assign(hasProbeStates ? n : 0, ProbeState::Invalid);
   v.offsets.assign(hasProbeStates ? n : 0, Eigen::Vector3f::Zero());
 }
@@ -76,14 +85,14 @@ std::vector<bool> storedBricks(const Volume& v) {
 }
 
 void requireFiniteVolume(const Volume& v) {
-  for (const std::vector<float>* values : {&v.coefficients, &v.visibility})
+  const std::pair<const std::vector<float>*, int> arrays[] = {
+      {&v.coefficients, v.coefficientsPerProbe}, {&v.visibility, v.visibilityPerProbe},
+      {&v.distanceMoments, v.distanceMomentsPerProbe()}};
+  for (const auto& [values, perProbe] : arrays)
     for (std::size_t i = 0; i < values->size(); ++i)
       if (!std::isfinite((*values)[i]))
         throw std::runtime_error(fmt::format("internal error: probe {} has a non-finite value; nothing written",
-                                             v.rows.probeAt(v.grid, std::int64_t(i / std::max<std::size_t>(
-                                                                        1, values == &v.coefficients
-                                                                               ? v.coefficientsPerProbe
-                                                                               : v.visibilityPerProbe)))));
+                                             v.rows.probeAt(v.grid, std::int64_t(i / std::max<std::size_t>(1, perProbe)))));
 }
 
 }  // namespace baker

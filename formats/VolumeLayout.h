@@ -13,19 +13,22 @@ namespace baker {
 //    one RGB grid "rgb_NN"; otherwise each channel's function NN is a scalar grid named after
 //    the channel, e.g. "Y_NN", "Co_NN", "Cg_NN";
 //  - sky visibility, function NN of channel 0's set: a scalar grid "visibility_NN";
+//  - distance moments, value NNN of the probe's distance map (volume/DistanceMoments.h): a scalar
+//    grid "distance_moments_NNN";
 //  - "probe_state" (0 inside geometry and filled from neighbours, 1 valid, 2 moved out of
 //    geometry) and "probe_offset" (world-space move from the grid position, three components).
 struct VolumeGrid {
-  enum class Kind { Coefficients, Visibility, ProbeState, ProbeOffset };
+  enum class Kind { Coefficients, Visibility, DistanceMoments, ProbeState, ProbeOffset };
   std::string name;
   Kind kind = Kind::Coefficients;
   int components = 1;  // 1 or 3
-  // Where component c lives in the probe's coefficients (Coefficients) or visibility values
-  // (Visibility); unused for the probe grids.
+  // Where component c lives in the probe's coefficients (Coefficients), visibility values
+  // (Visibility) or distance moments (DistanceMoments); unused for the probe grids.
   int index[3] = {0, 0, 0};
 };
 
-std::vector<VolumeGrid> volumeGrids(const Basis& basis, int visibilityPerProbe, bool hasProbeStates);
+std::vector<VolumeGrid> volumeGrids(const Basis& basis, int visibilityPerProbe, bool hasProbeStates,
+                                    int distanceMomentsPerProbe);
 
 // Names of a grid's components where a format stores them one by one (EXR channels):
 // "rgb_00.R", "probe_offset.X", or the grid's own name for a scalar grid.

@@ -19,6 +19,7 @@ const char* kindName(VolumeGrid::Kind kind) {
   switch (kind) {
     case VolumeGrid::Kind::Coefficients: return "irradiance_coefficients";
     case VolumeGrid::Kind::Visibility: return "sky_visibility_coefficients";
+    case VolumeGrid::Kind::DistanceMoments: return "distance_moments";
     case VolumeGrid::Kind::ProbeState: return "probe_state";
     case VolumeGrid::Kind::ProbeOffset: return "probe_offset";
   }
@@ -34,9 +35,10 @@ std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume
 std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume& volume, const Basis& basis,
                                                                     bool hasProbeStates) {
   nlohmann::json layout = nlohmann::json::array();
-  for (const VolumeGrid& g : volumeGrids(basis, volume.visibilityPerProbe, hasProbeStates)) {
+  for (const VolumeGrid& g : volumeGrids(basis, volume.visibilityPerProbe, hasProbeStates, volume.distanceMomentsPerProbe())) {
     nlohmann::json entry = {{"name", g.name}, {"kind", kindName(g.kind)}, {"components", g.components}};
-    if (g.kind == VolumeGrid::Kind::Coefficients || g.kind == VolumeGrid::Kind::Visibility)
+    if (g.kind == VolumeGrid::Kind::Coefficients || g.kind == VolumeGrid::Kind::Visibility ||
+        g.kind == VolumeGrid::Kind::DistanceMoments)
       entry["index"] = std::vector<int>(g.index, g.index + g.components);
     layout.push_back(entry);
   }
@@ -62,6 +64,8 @@ std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume
   };
   // How glossy specular is read from radiance, for decoders to read it the same way.
   if (radiance) meta.push_back({"baker.specular", specularBlendOf(basis)->describe().dump()});
+  if (volume.distanceMomentsPerProbe() > 0)
+    meta.push_back({kDistanceMapKey, distanceMapDescription(volume.distanceMap).dump()});
   for (const auto& [key, value] : volume.settings) meta.push_back({"baker.setting." + key, value});
   if (volume.shard) {
     meta.push_back({"baker.shard", shardName(*volume.shard)});
@@ -111,6 +115,42 @@ void readShard(const std::vector<std::pair<std::string, std::string>>& metadata,
   if (!volume.shard)
     throw InputError(fmt::format("{}: baker.shard \"{}\" is not K/N with 0 <= K < N <= {}", path, entry->second,
                                  kMaxShards));
+}
+
+nlohmann::json distanceMapDescription(const DistanceMapLayout& layout) {
+  return {{"size", layout.size},
+          {"cap", layout.cap},
+          {"sharpness", layout.sharpness()},
+          {"values_per_probe", layout.valuesPerProbe()},
+          {"encoding",
+           "octahedral, +Y up: p = (d.x, d.z) / (|d.x| + |d.y| + |d.z|), for d.y < 0 folded to ((1 - |p.y|) sign p.x, "
+           "(1 - |p.x|) sign p.y) with sign 0 = +1; (u, v) = (p + 1) / 2; texel (i, j) covers [i, i + 1) / size in u "
+           "and [j, j + 1) / size in v"},
+          {"values",
+           "distance_moments_NNN: value 2t is the mean distance to the first surface, 2t + 1 the mean squared "
+           "distance, of texel t = i + size * j, in units of cap and cap^2; rays that escape, and distances beyond "
+           "the cap, count as the cap; each ray w weighs max(0, c.w)^sharpness in the texel of direction c"},
+          {"invalid_probes", "probes inside geometry hold zeros: leak-aware readers turn them away"}};
+}
+
+void readDistanceMap(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume,
+                     const std::string& path) {
+  const auto entry = std::find_if(metadata.begin(), metadata.end(), [](const auto& e) { return e.first == kDistanceMapKey; });
+  if (entry == metadata.end()) return;
+  DistanceMapLayout layout;
+  try {
+    const nlohmann::json map = nlohmann::json::parse(entry->second);
+    layout.size = map.at("size").get<int>();
+    layout.cap = map.at("cap").get<double>();
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(fmt::format("{}: {} is not a distance map's description: {}", path, kDistanceMapKey, oneLine(e.what())));
+  }
+  if (layout.size < 2 || layout.size > 64)
+    throw InputError(fmt::format("{}: {} \"size\" is {}; a distance map has 2 to 64 texels per side", path,
+                                 kDistanceMapKey, layout.size));
+  if (!(layout.cap > 0.0) || !std::isfinite(layout.cap))
+    throw InputError(fmt::format("{}: {} \"cap\" must be a positive distance", path, kDistanceMapKey));
+  volume.distanceMap = layout;
 }
 
 }  // namespace baker

@@ -39,6 +39,15 @@ constexpr int kVolumeFormatVersion = 3;
 constexpr int kLevelsFormatVersion = 5;
 constexpr int kFirstLevelsFormatVersion = 4;
 
+// A volume with distance moments describes its map under this key (JSON): "size", "cap" (world
+// units), "sharpness", "values_per_probe", and in words the encoding, the texel order and the units.
+constexpr const char* kDistanceMapKey = "baker.distance_map";
+nlohmann::json distanceMapDescription(const DistanceMapLayout& layout);
+// Recovers volume.distanceMap from that key (none without it); InputError naming `path` and the
+// key when its size or cap is out of range.
+void readDistanceMap(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume,
+                     const std::string& path);
+
 // Recovers volume.settings from "baker.setting.*" keys.
 void readSettings(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume);
 

@@ -101,7 +101,8 @@ MpiBakeReport bakeWithMpi(const MpiSession& session, const BakeJob& job, const V
   if (job.placement()) return bakeLevelsWithMpi(session, job, output, progress);
   // Rank 0 will hold the whole volume: refused before it traces (its failure stops every rank),
   // not after hours of baking.
-  if (session.rank() == 0) requireVolumeFitsInMemory(job.grid(), 1, job.basis(), physicalMemoryBytes());
+  if (session.rank() == 0)
+    requireVolumeFitsInMemory(job.grid(), 1, job.basis(), physicalMemoryBytes(), job.settings().distanceValuesPerProbe());
   MpiBakeReport report;
   const auto start = std::chrono::steady_clock::now();
   Volume part = job.bake(&report.stats, progress);
@@ -118,12 +119,11 @@ MpiBakeReport bakeWithMpi(const MpiSession& session, const BakeJob& job, const V
   const auto gatherStart = std::chrono::steady_clock::now();
   VolumeAssembly assembly(part, "rank 0");
   assembly.addBaked(part);
-  const ProbeGrid grid = part.grid;
-  const int nc = part.coefficientsPerProbe, nv = part.visibilityPerProbe;
+  const Volume like = volumeWithoutValues(part);
   part = Volume();  // in the assembly now: hold the whole volume, not this share as well
   for (int r = 1; r < session.size(); ++r) {
     const Shard theirs{r, session.size()};
-    std::vector<float> values(packedSize(grid, shardBricks(grid, theirs), nc, nv));
+    std::vector<float> values(packedSize(like, shardBricks(like.grid, theirs)));
     session.receiveFrom(r, values);
     assembly.addPacked(theirs, values);
   }

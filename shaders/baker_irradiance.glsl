@@ -457,6 +457,46 @@ BAKER_SPECULAR(AdCos2, 9, bakerIrradianceAdCos2)
 BAKER_SPECULAR(AdSrbf, 9, bakerIrradianceAdSrbf)
 BAKER_SPECULAR(AdHemi9, 7, bakerRadianceAdHemi9)
 
+// ---- Leak-aware weights (docs/LEAKS.md). A volume with "baker.distance_map" holds per probe an
+// N × N octahedral map of the mean and mean squared distance to the first surface, in units of
+// the map's cap. Pack each probe's map as an N × N tile of a two-channel texture (R: value 2t,
+// G: value 2t + 1 of texel t = i + N·j at tile texel (i, j)); `tile` is its first texel. Multiply
+// each corner's trilinear weight by bakerLeakWeight and divide by the sum of the products.
+vec2 bakerOctahedralEncode(vec3 d) {
+  vec2 p = d.xz / (abs(d.x) + abs(d.y) + abs(d.z));
+  if (d.y < 0.0) p = (1.0 - abs(p.yx)) * vec2(p.x < 0.0 ? -1.0 : 1.0, p.y < 0.0 ? -1.0 : 1.0);
+  return 0.5 * (p + 1.0);
+}
+
+// `probe`: where the probe was baked (grid position plus probe_offset); `point` on a surface of
+// unit `normal`.
+float bakerLeakWeight(sampler2D moments, ivec2 tile, int size, float cap, vec3 probe, vec3 point, vec3 normal,
+                      float spacing) {
+  vec3 fromProbe = point + 0.25 * spacing * normal - probe;
+  float r = length(fromProbe);
+  if (!(r > 0.0)) return 1.0;
+  vec3 direction = fromProbe / r;
+  vec2 x = bakerOctahedralEncode(direction) * float(size) - 0.5;
+  ivec2 low = clamp(ivec2(floor(x)), ivec2(0), ivec2(size - 2));
+  vec2 f = clamp(x - vec2(low), 0.0, 1.0);
+  vec2 m00 = texelFetch(moments, tile + low, 0).rg, m10 = texelFetch(moments, tile + low + ivec2(1, 0), 0).rg;
+  vec2 m01 = texelFetch(moments, tile + low + ivec2(0, 1), 0).rg, m11 = texelFetch(moments, tile + low + ivec2(1, 1), 0).rg;
+  bool open = (m00.x >= 1.0 || (1.0 - f.x) * (1.0 - f.y) == 0.0) && (m10.x >= 1.0 || f.x * (1.0 - f.y) == 0.0) &&
+              (m01.x >= 1.0 || (1.0 - f.x) * f.y == 0.0) && (m11.x >= 1.0 || f.x * f.y == 0.0);
+  if (open) return 1.0;
+  vec2 m = mix(mix(m00, m10, f.x), mix(m01, m11, f.x), f.y) * vec2(cap, cap * cap);
+  float facing = 0.5 * (1.0 - dot(direction, normal));
+  float weight = (facing * facing + 0.2) / 1.2;
+  if (r > m.x) {
+    float variance = abs(m.y - m.x * m.x), beyond = r - m.x;
+    float chebyshev = variance / (variance + beyond * beyond);
+    weight *= chebyshev * chebyshev * chebyshev;
+  }
+  weight = max(weight, 1e-6);
+  if (weight < 0.2) weight *= weight * weight / 0.04;
+  return weight;
+}
+
 // ---- Adaptive volumes (docs/DECODERS.md "Adaptive volumes on the GPU"); include
 // baker_adaptive.glsl first. The pool's textures are packed as above, per probe of a pool slot:
 // an atlas of slots, slot s at texel 8·(s mod S, (s / S) mod S, s / S²) + the probe's place in

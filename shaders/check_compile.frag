@@ -70,5 +70,6 @@ void main() {
            bakerSpecularAdCos2(dice, n, view, roughness, specularBlend) +
            bakerSpecularAdSrbf(dice, n, view, roughness, specularBlend) +
            bakerSpecularAdHemi9(l2, n, view, roughness, specularBlend);
-  color = vec4(e + s.rgb * s.a, v);
+  float leak = bakerLeakWeight(specularBlend, ivec2(8, 16), 8, 2.0 * spacing, origin, origin + n, n, spacing);
+  color = vec4(e + s.rgb * s.a, v * leak);
 }

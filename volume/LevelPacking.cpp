@@ -22,7 +22,7 @@ std::size_t packedLevelsSize(const AdaptiveVolume& like, const std::vector<Probe
   std::size_t size = 0;
   for (std::size_t k = 0; k < like.levels.size(); ++k) {
     const Volume& level = like.levels[k];
-    size += packedSize(level.grid, share[k], share[k].bricks(), level.coefficientsPerProbe, level.visibilityPerProbe);
+    size += packedSize(level, share[k], share[k].bricks());
   }
   return size;
 }

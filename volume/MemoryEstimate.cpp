@@ -12,8 +12,8 @@
 
 namespace baker {
 
-double volumeMemoryBytes(double probes, const Basis& basis) {
-  const double values = double(basis.totalCoefficients()) + double(basis.functions(0).count());
+double volumeMemoryBytes(double probes, const Basis& basis, int distanceValues) {
+  const double values = double(basis.totalCoefficients()) + double(basis.functions(0).count()) + distanceValues;
   const double perProbe = values * sizeof(float) + sizeof(ProbeState) + sizeof(Eigen::Vector3f);
   return 2.0 * probes * perProbe;
 }
@@ -25,20 +25,21 @@ std::uint64_t physicalMemoryBytes() {
   return std::uint64_t(pages) * std::uint64_t(pageSize);
 }
 
-double bakeMemoryBytes(const ProbeGrid& grid, int shardCount, const Basis& basis) {
+double bakeMemoryBytes(const ProbeGrid& grid, int shardCount, const Basis& basis, int distanceValues) {
   const double probes = double(grid.dims.x()) * double(grid.dims.y()) * double(grid.dims.z());
-  if (shardCount <= 1) return volumeMemoryBytes(probes, basis);
+  if (shardCount <= 1) return volumeMemoryBytes(probes, basis, distanceValues);
   const Eigen::Vector3d counts = grid.brickCounts().cast<double>();
   const double bricks = counts.prod();
   // A shard is a run of whole bricks, at most ⌈B/N⌉ of them, and full bricks can come first.
   const double shardProbes = std::min(probes, std::ceil(bricks / shardCount) * std::pow(double(kBrickSize), 3));
   // The Morton order of every brick (index and key) and the brick-to-row table.
   const double brickTables = 3.0 * sizeof(std::int64_t) * bricks;
-  return volumeMemoryBytes(shardProbes, basis) + brickTables;
+  return volumeMemoryBytes(shardProbes, basis, distanceValues) + brickTables;
 }
 
-void requireVolumeFitsInMemory(const ProbeGrid& grid, int shardCount, const Basis& basis, std::uint64_t availableBytes) {
-  const double needed = bakeMemoryBytes(grid, shardCount, basis);
+void requireVolumeFitsInMemory(const ProbeGrid& grid, int shardCount, const Basis& basis, std::uint64_t availableBytes,
+                               int distanceValues) {
+  const double needed = bakeMemoryBytes(grid, shardCount, basis, distanceValues);
   if (needed <= double(availableBytes)) return;
   const std::string held = shardCount <= 1 ? "" : fmt::format(" (one shard of {})", shardCount);
   throw SettingError("spacing",

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "volume/DistanceMoments.h"
 #include "volume/ProbeGrid.h"
 #include "volume/ProbeRows.h"
 #include "volume/ProbeState.h"
@@ -27,6 +28,10 @@ struct Volume {
   // sky, or for radiance V(ω) itself.
   int visibilityPerProbe = 0;
   std::vector<float> visibility;
+  // Per probe, its distances to the first surface around it (volume/DistanceMoments.h):
+  // distanceMap.valuesPerProbe() values, or none (size 0) in volumes without them.
+  DistanceMapLayout distanceMap{0, 0.0};
+  std::vector<float> distanceMoments;
   // Per probe: whether it was baked where the grid puts it, moved out of geometry by `offsets`
   // (world units), or found inside geometry and filled from its neighbours.
   std::vector<ProbeState> states;
@@ -44,6 +49,7 @@ struct Volume {
   std::int64_t rowOf(std::int64_t probe) const { return rows.row(grid, probe); }
   // The coefficients of a probe the volume holds.
   const float* probe(std::int64_t index) const { return coefficients.data() + rowOf(index) * coefficientsPerProbe; }
+  int distanceMomentsPerProbe() const { return distanceMap.size > 0 ? distanceMap.valuesPerProbe() : 0; }
 };
 
 }  // namespace baker

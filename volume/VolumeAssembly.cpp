@@ -40,6 +40,9 @@ void requireSameBake(const Volume& part, const std::string& name, const Volume& 
   if (part.visibilityPerProbe != first.visibilityPerProbe)
     mismatch("baker.visibility_per_probe", std::to_string(part.visibilityPerProbe),
              std::to_string(first.visibilityPerProbe));
+  const DistanceMapLayout &d = part.distanceMap, &e = first.distanceMap;
+  if (d.size != e.size || d.cap != e.cap)
+    mismatch("baker.distance_map", fmt::format("size {} cap {:.17g}", d.size, d.cap), fmt::format("size {} cap {:.17g}", e.size, e.cap));
   const auto setting = [](const Volume& v, const std::string& key) {
     const auto it = v.settings.find(key);
     return it == v.settings.end() ? std::string("none") : "\"" + it->second + "\"";
@@ -60,6 +63,7 @@ Volume volumeWithoutValues(const Volume& volume) {
   header.basisName = volume.basisName;
   header.coefficientsPerProbe = volume.coefficientsPerProbe;
   header.visibilityPerProbe = volume.visibilityPerProbe;
+  header.distanceMap = volume.distanceMap;
   header.settings = volume.settings;
   header.shard = volume.shard;
   return header;
@@ -69,6 +73,7 @@ void holdZeroProbes(Volume& volume) {
   const std::size_t probes = std::size_t(volume.rows.count(volume.grid));
   volume.coefficients.assign(probes * volume.coefficientsPerProbe, 0.0f);
   volume.visibility.assign(probes * volume.visibilityPerProbe, 0.0f);
+  volume.distanceMoments.assign(probes * std::size_t(volume.distanceMomentsPerProbe()), 0.0f);
   volume.states.assign(probes, ProbeState::Invalid);
   volume.offsets.assign(probes, Eigen::Vector3f::Zero());
 }
@@ -120,7 +125,7 @@ void VolumeAssembly::addBaked(const Volume& part) {
 }
 
 void VolumeAssembly::copyBricks(const Volume& part, const Shard& shard) {
-  const int nc = whole_.coefficientsPerProbe, nv = whole_.visibilityPerProbe;
+  const int nc = whole_.coefficientsPerProbe, nv = whole_.visibilityPerProbe, nd = whole_.distanceMomentsPerProbe();
   for (const std::int64_t b : shardBricks(whole_.grid, shard))
     for (const std::int64_t p : probesOfBrick(whole_.grid, b)) {
       const std::int64_t r = part.rowOf(p);
@@ -129,6 +134,7 @@ void VolumeAssembly::copyBricks(const Volume& part, const Shard& shard) {
       whole_.offsets[p] = part.offsets[r];
       std::copy_n(part.coefficients.begin() + r * nc, nc, whole_.coefficients.begin() + p * nc);
       std::copy_n(part.visibility.begin() + r * nv, nv, whole_.visibility.begin() + p * nv);
+      std::copy_n(part.distanceMoments.begin() + r * nd, nd, whole_.distanceMoments.begin() + p * nd);
     }
 }
 
@@ -137,10 +143,9 @@ void VolumeAssembly::addPacked(const Shard& shard, const std::vector<float>& pac
     throw InputError(fmt::format("shard {}: the bake has {} shards", shardName(shard), whole_.shard->count));
   claimShard(given_, shard, "shard " + shardName(shard));
   const std::vector<std::int64_t> bricks = shardBricks(whole_.grid, shard);
-  const int nc = whole_.coefficientsPerProbe, nv = whole_.visibilityPerProbe;
-  if (packed.size() != packedSize(whole_.grid, bricks, nc, nv))
+  if (packed.size() != packedSize(whole_, bricks))
     throw InputError(fmt::format("shard {}: {} values received, {} expected", shardName(shard), packed.size(),
-                                 packedSize(whole_.grid, bricks, nc, nv)));
+                                 packedSize(whole_, bricks)));
   const float* in = packed.data();
   for (const std::int64_t b : bricks)
     for (const std::int64_t p : probesOfBrick(whole_.grid, b)) {
@@ -154,13 +159,14 @@ void VolumeAssembly::addPacked(const Shard& shard, const std::vector<float>& pac
 const float* unpackProbe(const float* in, Volume& volume, std::int64_t row, int stateLimit) {
   const float state = in[0];
   if (!(state >= 0.0f && state < float(stateLimit) && state == float(int(state)))) return nullptr;
-  const int nc = volume.coefficientsPerProbe, nv = volume.visibilityPerProbe;
+  const int nc = volume.coefficientsPerProbe, nv = volume.visibilityPerProbe, nd = volume.distanceMomentsPerProbe();
   const std::size_t r = std::size_t(row);
   volume.states[r] = ProbeState(std::uint8_t(state));
   for (int c = 0; c < 3; ++c) volume.offsets[r][c] = in[1 + c];
   std::copy_n(in + 4, nc, volume.coefficients.begin() + row * nc);
   std::copy_n(in + 4 + nc, nv, volume.visibility.begin() + row * nv);
-  return in + 4 + nc + nv;
+  std::copy_n(in + 4 + nc + nv, nd, volume.distanceMoments.begin() + row * nd);
+  return in + 4 + nc + nv + nd;
 }
 
 Volume VolumeAssembly::finish() {
@@ -171,22 +177,24 @@ Volume VolumeAssembly::finish() {
   return std::move(whole_);
 }
 
-std::size_t packedSize(const ProbeGrid& grid, const std::vector<std::int64_t>& bricks, int coefficientsPerProbe,
-                       int visibilityPerProbe) {
-  return packedSize(grid, ProbeRows(), bricks, coefficientsPerProbe, visibilityPerProbe);
+int packedValuesPerProbe(const Volume& like) {
+  return 4 + like.coefficientsPerProbe + like.visibilityPerProbe + like.distanceMomentsPerProbe();
 }
 
-std::size_t packedSize(const ProbeGrid& grid, const ProbeRows& rows, const std::vector<std::int64_t>& bricks,
-                       int coefficientsPerProbe, int visibilityPerProbe) {
+std::size_t packedSize(const Volume& like, const std::vector<std::int64_t>& bricks) {
+  return packedSize(like, ProbeRows(), bricks);
+}
+
+std::size_t packedSize(const Volume& like, const ProbeRows& rows, const std::vector<std::int64_t>& bricks) {
   std::size_t probes = 0;
-  for (const std::int64_t b : bricks) probes += std::size_t(rows.probesHeld(grid, b));
-  return probes * std::size_t(4 + coefficientsPerProbe + visibilityPerProbe);
+  for (const std::int64_t b : bricks) probes += std::size_t(rows.probesHeld(like.grid, b));
+  return probes * std::size_t(packedValuesPerProbe(like));
 }
 
 std::vector<float> packBricks(const Volume& part, const std::vector<std::int64_t>& bricks) {
-  const int nc = part.coefficientsPerProbe, nv = part.visibilityPerProbe;
+  const int nc = part.coefficientsPerProbe, nv = part.visibilityPerProbe, nd = part.distanceMomentsPerProbe();
   std::vector<float> packed;
-  packed.reserve(packedSize(part.grid, bricks, nc, nv));
+  packed.reserve(packedSize(part, part.rows, bricks));
   for (const std::int64_t b : bricks) {
     if (!part.rows.holdsBrick(b)) throw std::logic_error("packBricks: a brick the part does not hold");
     forEachHeldProbeOfBrick(part.grid, part.rows, b, [&](int, int, int, std::int64_t r) {
@@ -194,6 +202,7 @@ std::vector<float> packBricks(const Volume& part, const std::vector<std::int64_t
       packed.insert(packed.end(), part.offsets[r].data(), part.offsets[r].data() + 3);
       packed.insert(packed.end(), part.coefficients.begin() + r * nc, part.coefficients.begin() + (r + 1) * nc);
       packed.insert(packed.end(), part.visibility.begin() + r * nv, part.visibility.begin() + (r + 1) * nv);
+      packed.insert(packed.end(), part.distanceMoments.begin() + r * nd, part.distanceMoments.begin() + (r + 1) * nd);
     });
   }
   return packed;

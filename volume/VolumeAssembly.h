@@ -53,16 +53,17 @@ void requireEveryShard(const std::vector<std::string>& given);
 void requireSameBake(const Volume& part, const std::string& name, const Volume& first, const std::string& firstName);
 
 // A part's values for its shard's bricks, probe by probe in brick order: state, offset (3),
-// coefficients, sky visibility; what a rank sends to the rank that writes the volume.
+// coefficients, sky visibility, distance moments; what a rank sends to the rank that writes the
+// volume.
 std::vector<float> packBricks(const Volume& part, const std::vector<std::int64_t>& bricks);
 // Reads one probe as packBricks packs it into row `row` of `volume` and returns where the next
 // starts; nullptr, reading nothing, when its state is not a whole number below `stateLimit`.
 const float* unpackProbe(const float* in, Volume& volume, std::int64_t row, int stateLimit);
-// The size of packBricks's result for these bricks of `grid`.
-std::size_t packedSize(const ProbeGrid& grid, const std::vector<std::int64_t>& bricks, int coefficientsPerProbe,
-                       int visibilityPerProbe);
+// How many values packBricks packs per probe of a volume like `like`.
+int packedValuesPerProbe(const Volume& like);
+// The size of packBricks's result for these bricks of `like`'s grid.
+std::size_t packedSize(const Volume& like, const std::vector<std::int64_t>& bricks);
 // The same for the probes of `bricks` that `rows` holds (some sub-bricks of an adaptive level).
-std::size_t packedSize(const ProbeGrid& grid, const ProbeRows& rows, const std::vector<std::int64_t>& bricks,
-                       int coefficientsPerProbe, int visibilityPerProbe);
+std::size_t packedSize(const Volume& like, const ProbeRows& rows, const std::vector<std::int64_t>& bricks);
 
 }  // namespace baker

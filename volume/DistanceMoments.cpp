@@ -1,0 +1,120 @@
+#include "volume/DistanceMoments.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace baker {
+namespace {
+
+double signOf(double x) { return x < 0.0 ? -1.0 : 1.0; }
+
+// Weights below this share of a texel's peak are left out: max(0, c·ω)^k < 1e-4.
+constexpr double kNegligibleWeight = 1e-4;
+
+}  // namespace
+
+double DistanceMapLayout::sharpness() const { return std::log(2.0) / -std::log(std::cos(std::sqrt(M_PI) / size)); }
+
+Eigen::Vector3d DistanceMapLayout::texelDirection(int texel) const {
+  return octahedralDecode(Eigen::Vector2d((texel % size + 0.5) / size, (texel / size + 0.5) / size));
+}
+
+Eigen::Vector2d octahedralEncode(const Eigen::Vector3d& d) {
+  const double l1 = std::abs(d.x()) + std::abs(d.y()) + std::abs(d.z());
+  Eigen::Vector2d p(d.x() / l1, d.z() / l1);
+  if (d.y() < 0.0) p = Eigen::Vector2d((1.0 - std::abs(p.y())) * signOf(p.x()), (1.0 - std::abs(p.x())) * signOf(p.y()));
+  return 0.5 * (p + Eigen::Vector2d::Ones());
+}
+
+Eigen::Vector3d octahedralDecode(const Eigen::Vector2d& uv) {
+  Eigen::Vector2d p = 2.0 * uv - Eigen::Vector2d::Ones();
+  const double y = 1.0 - std::abs(p.x()) - std::abs(p.y());
+  if (y < 0.0) p = Eigen::Vector2d((1.0 - std::abs(p.y())) * signOf(p.x()), (1.0 - std::abs(p.x())) * signOf(p.y()));
+  return Eigen::Vector3d(p.x(), y, p.y()).normalized();
+}
+
+DistanceMomentsAccumulator::DistanceMomentsAccumulator(const DistanceMapLayout& layout)
+    : layout_(layout), sharpness_(layout.sharpness()), cutoff_(std::pow(kNegligibleWeight, 1.0 / sharpness_)) {
+  for (int t = 0; t < layout.texels(); ++t) texelDirections_.push_back(layout.texelDirection(t));
+  reset();
+}
+
+void DistanceMomentsAccumulator::reset() {
+  weight_.assign(std::size_t(layout_.texels()), 0.0);
+  sum_.assign(weight_.size(), 0.0);
+  sumSquares_.assign(weight_.size(), 0.0);
+}
+
+void DistanceMomentsAccumulator::add(const Eigen::Vector3f* directions, const float* distances, int count) {
+  for (int r = 0; r < count; ++r) {
+    const Eigen::Vector3d d = directions[r].cast<double>();
+    const double distance = std::min(double(distances[r]) / layout_.cap, 1.0);
+    for (std::size_t t = 0; t < texelDirections_.size(); ++t) {
+      const double c = texelDirections_[t].dot(d);
+      if (c <= cutoff_) continue;
+      const double w = std::exp(sharpness_ * std::log(c));
+      weight_[t] += w;
+      sum_[t] += w * distance;
+      sumSquares_[t] += w * distance * distance;
+    }
+  }
+}
+
+void DistanceMomentsAccumulator::write(float* moments) const {
+  for (std::size_t t = 0; t < weight_.size(); ++t) {
+    const bool reached = weight_[t] > 0.0;
+    moments[2 * t] = float(reached ? sum_[t] / weight_[t] : 1.0);
+    moments[2 * t + 1] = float(reached ? sumSquares_[t] / weight_[t] : 1.0);
+  }
+}
+
+DistanceMomentsRead readDistanceMoments(const DistanceMapLayout& layout, const float* moments, const Eigen::Vector3d& d) {
+  const Eigen::Vector2d uv = octahedralEncode(d);
+  const int n = layout.size;
+  int lo[2];
+  double f[2];
+  for (int a = 0; a < 2; ++a) {
+    const double x = uv[a] * n - 0.5;
+    lo[a] = std::clamp(int(std::floor(x)), 0, n - 2);
+    f[a] = std::clamp(x - lo[a], 0.0, 1.0);
+  }
+  DistanceMomentsRead read;
+  read.open = true;
+  for (int corner = 0; corner < 4; ++corner) {
+    const int di = corner & 1, dj = corner >> 1;
+    const double w = (di ? f[0] : 1.0 - f[0]) * (dj ? f[1] : 1.0 - f[1]);
+    const int t = lo[0] + di + n * (lo[1] + dj);
+    read.mean += w * moments[2 * t];
+    read.meanSquare += w * moments[2 * t + 1];
+    if (w > 0.0 && moments[2 * t] < 1.0f) read.open = false;
+  }
+  read.mean *= layout.cap;
+  read.meanSquare *= layout.cap * layout.cap;
+  return read;
+}
+
+double leakWeight(const DistanceMapLayout& layout, const float* moments, const Eigen::Vector3d& probe,
+                  const Eigen::Vector3d& point, const Eigen::Vector3d& normal, double spacing) {
+  constexpr double kNormalBiasSpacings = 0.25, kFloor = 1e-6, kCrush = 0.2;
+  const Eigen::Vector3d biased = point + kNormalBiasSpacings * spacing * normal;
+  const Eigen::Vector3d fromProbe = biased - probe;
+  const double r = fromProbe.norm();
+  if (!(r > 0.0)) return 1.0;  // the point sits on the probe: nothing can hide one from the other
+  const DistanceMomentsRead read = readDistanceMoments(layout, moments, fromProbe / r);
+  if (read.open) return 1.0;
+  const Eigen::Vector3d toProbe = -fromProbe / r;
+  const double facing = 0.5 * (toProbe.dot(normal) + 1.0);
+  double weight = (facing * facing + 0.2) / 1.2;
+  if (r > read.mean) {
+    const double variance = std::abs(read.meanSquare - read.mean * read.mean);
+    const double beyond = r - read.mean;
+    const double chebyshev = variance / (variance + beyond * beyond);
+    weight *= chebyshev * chebyshev * chebyshev;
+  }
+  weight = std::max(weight, kFloor);
+  if (weight < kCrush) weight *= weight * weight / (kCrush * kCrush);
+  return weight;
+}
+
+}  // namespace baker

@@ -1,0 +1,75 @@
+#pragma once
+#include <Eigen/Core>
+#include <vector>
+
+namespace baker {
+
+// A probe's distances to the first surface around it, for leak-aware sampling (Majercik et al.,
+// "Dynamic Diffuse Global Illumination with Ray-Traced Irradiance Fields", JCGT 2019): per texel
+// of a small octahedral map, the mean distance and the mean squared distance of the probe's rays
+// near the texel's direction. A reader compares a point's distance with them (Chebyshev's
+// inequality) and turns away a probe that a wall hides from the point.
+//
+// The map: direction d (+Y up) goes to p = (d.x, d.z) / (|d.x| + |d.y| + |d.z|), folded for
+// d.y < 0 to ((1 − |p.y|)·sign p.x, (1 − |p.x|)·sign p.y) (sign 0 = +1); (u, v) = (p + 1)/2.
+// Texel (i, j) of N × N covers u in [i, i + 1)/N, v in [j, j + 1)/N; it is stored as values
+// 2t (mean distance) and 2t + 1 (mean squared distance), t = i + N·j, both in units of the cap
+// (mean/cap and mean square/cap², in [0, 1]: half floats hold them at any scene scale).
+//
+// Distances are capped at `cap` (2 spacings: beyond any point the probe's cell holds); a ray that
+// escapes counts as the cap, so a texel of 1 and 1 is open: no surface within reach. Each ray ω adds to every texel c with the weight max(0, c·ω)^k,
+// k = ln 2 / −ln cos(√π / N): half weight half a texel's width away (k = 28.0 for N = 8).
+struct DistanceMapLayout {
+  static constexpr int kDefaultSize = 8;
+  static constexpr double kCapSpacings = 2.0;
+  int size = kDefaultSize;  // texels per side
+  double cap = 0.0;         // world units
+
+  int texels() const { return size * size; }
+  int valuesPerProbe() const { return 2 * texels(); }
+  double sharpness() const;
+  Eigen::Vector3d texelDirection(int texel) const;
+};
+
+// Octahedral coordinates (u, v) in [0, 1]² of unit direction d, and back.
+Eigen::Vector2d octahedralEncode(const Eigen::Vector3d& d);
+Eigen::Vector3d octahedralDecode(const Eigen::Vector2d& uv);
+
+// Accumulates one probe's rays (in any number of batches, always in the same order: the sums are
+// the same at any thread count).
+class DistanceMomentsAccumulator {
+ public:
+  explicit DistanceMomentsAccumulator(const DistanceMapLayout& layout);
+  void reset();
+  // `distances[r]`: to the first hit along unit `directions[r]`, or +∞ when the ray escaped. The
+  // rays are a lattice's: each weighs the same.
+  void add(const Eigen::Vector3f* directions, const float* distances, int count);
+  // 2·texels values in units of the cap; a texel no ray reached (weight 0) reads as open: 1 and 1.
+  void write(float* moments) const;
+
+ private:
+  DistanceMapLayout layout_;
+  std::vector<Eigen::Vector3d> texelDirections_;
+  double sharpness_, cutoff_;
+  std::vector<double> weight_, sum_, sumSquares_;
+};
+
+// The two moments at direction d in world units, bilinear between texel centres (clamped at the
+// map's edges); `open` when each texel read holds the cap: no surface within reach that way.
+struct DistanceMomentsRead {
+  double mean = 0.0, meanSquare = 0.0;
+  bool open = false;
+};
+DistanceMomentsRead readDistanceMoments(const DistanceMapLayout& layout, const float* moments, const Eigen::Vector3d& d);
+
+// The weight that turns away a probe hidden from a shading point, in (0, 1]:
+//  - exactly 1 where the probe's map reads open towards the point (mean at the cap: no surface
+//    within reach), so that in open space leak-aware sampling is trilinear sampling;
+//  - otherwise the back-face weight (((n·ω + 1)/2)² + 0.2)/1.2 (Majercik's, scaled to peak 1),
+//    ω from the point to the probe, times Chebyshev's bound σ²/(σ² + (r − μ)²) cubed when the
+//    point lies beyond the mean distance μ (r: from the probe to the point moved 0.25 spacings
+//    along its normal), floored at 1e-6 and crushed below 0.2 as in the paper.
+double leakWeight(const DistanceMapLayout& layout, const float* moments, const Eigen::Vector3d& probe,
+                  const Eigen::Vector3d& point, const Eigen::Vector3d& normal, double spacing);
+
+}  // namespace baker
