@@ -97,7 +97,7 @@ level, the truth at the point mirrored through the wall (x → −x). The last t
 that mirrored point on the lit side, against its truth: trilinear sampling darkens the lit side
 along the wall as much as it lights the dark side.
 
-{chr(10).join(sections)}
+{(chr(10) + chr(10)).join(sections)}
 """
     out = ROOT / "docs" / "leaks" / "report.md"
     out.parent.mkdir(parents=True, exist_ok=True)
