@@ -32,8 +32,7 @@ BakeSettings bakeSettings(const BakeRequest& request, std::vector<PlannedEffect>
   settings.projection.nonNegative = request.nonNegative;
   settings.projection.signal = parseStoredSignal(request.signal);
   settings.transport = transportSettings(plan, request.bounces, request.seed);
-  // Adaptive levels hold none yet (BakeRequest::distanceMap).
-  settings.distanceMapSize = request.adaptive() ? 0 : request.distanceMap;
+  settings.distanceMapSize = request.distanceMapSize();
   return settings;
 }
 
@@ -120,7 +119,7 @@ BakeJob::BakeJob(BakeRequest request, RayObserver* observer) : request_(std::mov
     grid_ = makeProbeGrid(scene_->bounds, *request_.spacing, kMaxBakeProbes);
     spacingReason_ = "as given";
   } else {
-    grid_ = defaultGrid(scene_->bounds, *basis_, DistanceMapLayout{request_.distanceMap, 0.0}.valuesPerProbe(),
+    grid_ = defaultGrid(scene_->bounds, *basis_, DistanceMapLayout{request_.distanceMapSize(), 0.0}.valuesPerProbe(),
                         spacingReason_);
   }
   plan_ = planEffects(*scene_, takeCensus(*scene_));

@@ -37,10 +37,10 @@ void validateBakeRequest(const BakeRequest& r) {
   if (r.adaptive() && r.shard && r.levels < 2)
     throw SettingError("shard", "an adaptive bake of one level is written as a uniform volume and is not cut into "
                                 "shards; bake 2 or more levels, or bake it whole");
-  if (r.distanceMap != 0 && (r.distanceMap < kMinDistanceMap || r.distanceMap > kMaxDistanceMap))
+  if (const int n = r.distanceMapSize(); n != 0 && (n < kMinDistanceMap || n > kMaxDistanceMap))
     throw SettingError("distance_map", fmt::format("must be 0 (none) or {}..{} texels per side, got {}", kMinDistanceMap,
-                                                   kMaxDistanceMap, r.distanceMap));
-  if (r.distanceMap != 0 && r.adaptive() && r.distanceMap != DistanceMapLayout::kDefaultSize)
+                                                   kMaxDistanceMap, n));
+  if (r.distanceMapSize() != 0 && r.adaptive())
     throw SettingError("distance_map", "applies to uniform placement only: adaptive volumes hold no distance maps yet");
   const StoredSignal signal = parseStoredSignal(r.signal);
   if (signal == StoredSignal::Radiance && r.window.hannWidth > 0)

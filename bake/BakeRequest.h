@@ -46,8 +46,9 @@ struct BakeRequest {
   // from which readers reconstruct irradiance by each function's diffuse response; basis/StoredSignal.h).
   std::string signal = "irradiance";
   // Texels per side of each probe's map of distances to the first surface, for leak-aware
-  // sampling (volume/DistanceMoments.h); 0: none. Uniform placement only.
-  int distanceMap = DistanceMapLayout::kDefaultSize;
+  // sampling (volume/DistanceMoments.h); 0: none. Uniform placement only; none given: the
+  // default size for uniform placement, none for adaptive.
+  std::optional<int> distanceMap;
   // Bake only this shard's bricks (volume/Shard.h), a part for merging; none: the whole grid.
   std::optional<Shard> shard;
   // "uniform": one grid at `spacing`. "adaptive": `levels` nested levels (volume/LevelGrids.h),
@@ -58,6 +59,7 @@ struct BakeRequest {
 
   bool adaptive() const { return placement == "adaptive"; }
   BasisParameters basisParameters() const { return {sgSharpness, hemisphereAxis}; }
+  int distanceMapSize() const { return distanceMap.value_or(adaptive() ? 0 : DistanceMapLayout::kDefaultSize); }
 };
 
 // Every check that needs no scene: values in range, names known, combinations that make sense.

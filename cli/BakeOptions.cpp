@@ -46,11 +46,10 @@ void addBakeOptions(CLI::App& app, BakeOptions& o, bool listed) {
                  "ringing around bright small sources); default: none");
   app.add_flag("--non-negative", r.nonNegative,
                "solve for coefficients >= 0 per probe instead of the linear projection");
-  app.add_option("--distance-map", r.distanceMap,
+  app.add_option("--distance-map", o.distanceMap,
                  "texels per side of each probe's octahedral map of distances to the nearest surfaces, which "
-                 "`baker sample --leak-aware` reads to keep light from leaking through walls; 0: none "
-                 "(uniform placement only)")
-      ->capture_default_str();
+                 "`baker sample --leak-aware` reads to keep light from leaking through walls; 0: none; default 8 "
+                 "with uniform placement (adaptive volumes hold none)");
   app.add_option("--signal", r.signal,
                  "what the coefficients hold: irradiance (E(n), one lookup per normal) or radiance (L(ω), whose "
                  "irradiance `baker sample` reconstructs from each function's diffuse response)")
@@ -80,6 +79,7 @@ BakeRequest bakeRequest(const CLI::App& app, const BakeOptions& options) {
   BakeRequest request = options.request;
   if (app.count("--spacing")) request.spacing = options.spacing;
   if (app.count("--sg-sharpness")) request.sgSharpness = options.sgSharpness;
+  if (app.count("--distance-map")) request.distanceMap = options.distanceMap;
   if (app.count("--hemisphere-axis")) request.hemisphereAxis = parseTriple("--hemisphere-axis", options.hemisphereAxis);
   if (app.count("--rays")) request.quality.clear();
   return request;

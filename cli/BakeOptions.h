@@ -19,6 +19,7 @@ struct BakeOptions {
   BakeRequest request;
   double spacing = 0.0, sgSharpness = 0.0;  // taken only when their flag is given
   std::string hemisphereAxis;
+  int distanceMap = DistanceMapLayout::kDefaultSize;
 };
 
 // `listed`: a command that takes lists of bases, ray and bounce counts registers its own

@@ -108,9 +108,9 @@ int runSampleCommand(int argc, char** argv) {
   specularFlags.addTo(app);
   bool leakAware = false;
   app.add_flag("--leak-aware", leakAware,
-               "weigh the eight probes by what their distance maps say: a probe that a wall hides from the position, "
-               "or that lies behind its surface, counts for little (Chebyshev test and back-face weight, "
-               "docs/LEAKS.md); trilinear where nothing hides them");
+               "weigh the eight probes by what their distance maps say: a probe whose map sees a wall between it and "
+               "the position, or its surface, counts for little (Chebyshev test and back-face weight, "
+               "docs/LEAKS.md); trilinear where no map sees a surface");
   app.add_flag("--json", json, "print the result as JSON on stdout");
   return runGuarded("baker sample", app, argc, argv, [&]() {
     const Eigen::Vector3d position = parseTriple("--at", at);

@@ -695,14 +695,15 @@ inline void octahedralEncode(const Vec3& d, double uv[2]) {
 
 // The weight in (0, 1] of the probe baked at `probe` (grid position plus its probe_offset) with
 // distance moments `moments` (2·size² values), for a shading point on a surface of unit `normal`:
-// 1 where its map reads open towards the point, else the back-face weight times Chebyshev's bound.
+// 1 where its map reads open towards the point, else the back-face weight times Chebyshev's bound
+// (docs/LEAKS.md).
 inline double leakWeight(const DistanceMap& map, const float* moments, const Vec3& probe, const Vec3& point,
                          const Vec3& normal, double spacing) {
   const Vec3 biased = point + (0.25 * spacing) * normal;
   const Vec3 fromProbe = biased + (-1.0) * probe;
   const double r = std::sqrt(dot(fromProbe, fromProbe));
-  if (!(r > 0.0)) return 1.0;
-  const Vec3 direction = (1.0 / r) * fromProbe;
+  if (!(r > 0.0) || !std::isfinite(r)) return 1.0;
+  const Vec3 direction{fromProbe.x / r, fromProbe.y / r, fromProbe.z / r};
   double uv[2];
   octahedralEncode(direction, uv);
   const int n = map.size;
@@ -734,8 +735,10 @@ inline double leakWeight(const DistanceMap& map, const float* moments, const Vec
     const double chebyshev = variance / (variance + beyond * beyond);
     weight *= chebyshev * chebyshev * chebyshev;
   }
-  weight = std::fmax(weight, 1e-6);
-  if (weight < 0.2) weight *= weight * weight / (0.2 * 0.2);
+  // The paper's floor and crush threshold, divided by 1.2 with its back-face weight.
+  const double floor = 1e-6 / 1.2, crush = 0.2 / 1.2;
+  if (!(weight >= floor)) weight = floor;
+  if (weight < crush) weight *= weight * weight / (crush * crush);
   return weight;
 }
 

@@ -109,9 +109,10 @@ void requireFiniteValues(const Volume& v, const std::string& path) {
       throw InputError(fmt::format("{}: probe {} has a non-finite visibility value", path,
                                    v.rows.probeAt(v.grid, std::int64_t(i / v.visibilityPerProbe))));
   for (std::size_t i = 0; i < v.distanceMoments.size(); ++i)
-    if (!std::isfinite(v.distanceMoments[i]))
-      throw InputError(fmt::format("{}: probe {} has a non-finite distance moment", path,
-                                   v.rows.probeAt(v.grid, std::int64_t(i / v.distanceMomentsPerProbe()))));
+    if (!(v.distanceMoments[i] >= 0.0f && v.distanceMoments[i] <= 1.0f))
+      throw InputError(fmt::format("{}: probe {} has a distance moment (distance_moments_{:03}) of {}, outside [0, 1]",
+                                   path, v.rows.probeAt(v.grid, std::int64_t(i / v.distanceMomentsPerProbe())),
+                                   i % std::size_t(v.distanceMomentsPerProbe()), v.distanceMoments[i]));
   for (const Eigen::Vector3f& o : v.offsets)
     if (!o.allFinite()) throw InputError(fmt::format("{}: a probe offset is not finite", path));
 }

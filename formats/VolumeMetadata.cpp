@@ -148,8 +148,9 @@ void readDistanceMap(const std::vector<std::pair<std::string, std::string>>& met
   if (layout.size < 2 || layout.size > 64)
     throw InputError(fmt::format("{}: {} \"size\" is {}; a distance map has 2 to 64 texels per side", path,
                                  kDistanceMapKey, layout.size));
-  if (!(layout.cap > 0.0) || !std::isfinite(layout.cap))
-    throw InputError(fmt::format("{}: {} \"cap\" must be a positive distance", path, kDistanceMapKey));
+  if (!(layout.cap > 0.0) || !std::isfinite(layout.cap * layout.cap))
+    throw InputError(fmt::format("{}: {} \"cap\" must be a positive distance whose square is finite", path,
+                                 kDistanceMapKey));
   volume.distanceMap = layout;
 }
 

@@ -474,7 +474,7 @@ float bakerLeakWeight(sampler2D moments, ivec2 tile, int size, float cap, vec3 p
                       float spacing) {
   vec3 fromProbe = point + 0.25 * spacing * normal - probe;
   float r = length(fromProbe);
-  if (!(r > 0.0)) return 1.0;
+  if (!(r > 0.0) || isinf(r)) return 1.0;
   vec3 direction = fromProbe / r;
   vec2 x = bakerOctahedralEncode(direction) * float(size) - 0.5;
   ivec2 low = clamp(ivec2(floor(x)), ivec2(0), ivec2(size - 2));
@@ -492,8 +492,10 @@ float bakerLeakWeight(sampler2D moments, ivec2 tile, int size, float cap, vec3 p
     float chebyshev = variance / (variance + beyond * beyond);
     weight *= chebyshev * chebyshev * chebyshev;
   }
-  weight = max(weight, 1e-6);
-  if (weight < 0.2) weight *= weight * weight / 0.04;
+  // The paper's floor and crush threshold, divided by 1.2 with its back-face weight.
+  const float crush = 0.2 / 1.2;
+  weight = max(weight, 1e-6 / 1.2);
+  if (weight < crush) weight *= weight * weight / (crush * crush);
   return weight;
 }
 

@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <random>
@@ -122,7 +124,7 @@ TEST(DistanceMoments, AFloorBelowIsSeenAtItsDistance) {
 
 Volume volumeWithMoments(float mean, float meanSquare) {
   Volume v = test::smoothVolume({4, 4, 4}, {0, 0, 0}, 0.5);
-  v.distanceMap = {8, 2.0 * v.grid.spacing};
+  v.distanceMap = {8, DistanceMapLayout::kCapSpacings * v.grid.spacing};
   v.distanceMoments.assign(std::size_t(v.grid.probeCount() * v.distanceMomentsPerProbe()), 0.0f);
   for (std::size_t i = 0; i < v.distanceMoments.size(); i += 2) {
     v.distanceMoments[i] = mean;
@@ -152,7 +154,7 @@ TEST(LeakAware, OpenSpaceIsTrilinearBitForBit) {
 // hidden from it, and its weight falls below 1e-6 of its trilinear share; the renormalised
 // weights still sum to 1.
 TEST(LeakAware, AProbeBehindAWallGetsAlmostNoWeight) {
-  const float mean = 0.15f / 2.0f;  // in units of the cap, 2 spacings
+  const float mean = float(0.15 / DistanceMapLayout::kCapSpacings);  // in units of the cap
   const Volume v = volumeWithMoments(mean, mean * mean);
   const Eigen::Vector3d probe = v.grid.position(1, 1, 1);
   const Eigen::Vector3d point = probe + Eigen::Vector3d(0.25, 0.0, 0.0);
@@ -248,6 +250,32 @@ TEST(LeakAware, AThinWallStopsTheLeak) {
   EXPECT_LT(sample("-0.0825,1.25,0.3", "-1,0,0", false), 0.8 * truth);
 }
 
+// The distance maps are part of the bit-identical volume: one thread or two, whole or in shards.
+TEST(LeakAware, MapsAreTheSameAtAnyThreadAndShardCount) {
+  const std::string dir = test::makeTempDir("LeakAwareDeterminism");
+  const std::string scene = test::sourcePath("data/thin_walls/thin_wall_quarter.gltf");
+  const auto bake = [&](const std::vector<std::string>& extra) {
+    std::vector<std::string> args = {scene, "--spacing", "0.25", "--rays", "64", "--quiet"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const test::ProcessResult run = test::runBaker(dir, args);
+    EXPECT_EQ(run.exitCode, 0) << run.err;
+  };
+  bake({"--threads", "1", "--out", "one.vdb"});
+  bake({"--threads", "2", "--out", "two.vdb"});
+  bake({"--shard", "0/3", "--out", "part0.vdb"});
+  bake({"--shard", "1/3", "--out", "part1.vdb"});
+  bake({"--shard", "2/3", "--out", "part2.vdb"});
+  ASSERT_EQ(test::runBaker(dir, {"merge", "merged.vdb", "part0.vdb", "part1.vdb", "part2.vdb"}).exitCode, 0);
+  const auto bytes = [&](const std::string& name) {
+    std::ifstream in(dir + "/" + name, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  ASSERT_FALSE(bytes("one.vdb").empty());
+  EXPECT_NE(bytes("one.vdb").find("distance_moments_127"), std::string::npos);
+  EXPECT_TRUE(bytes("one.vdb") == bytes("two.vdb"));
+  EXPECT_TRUE(bytes("one.vdb") == bytes("merged.vdb"));
+}
+
 TEST(LeakAware, CommandsRefuseWhatTheyCannotRead) {
   const std::string dir = test::makeTempDir("LeakAwareRefusals");
   const std::string scene = test::sourcePath("data/thin_walls/thin_wall_quarter.gltf");
@@ -262,6 +290,10 @@ TEST(LeakAware, CommandsRefuseWhatTheyCannotRead) {
   const test::ProcessResult tiny = test::runBaker(dir, {scene, "--distance-map", "1", "--out", "x.vdb"});
   EXPECT_EQ(tiny.exitCode, 2);
   EXPECT_NE(tiny.err.find("--distance-map must be 0 (none) or 2..16"), std::string::npos) << tiny.err;
+  const test::ProcessResult adaptive =
+      test::runBaker(dir, {scene, "--placement", "adaptive", "--distance-map", "8", "--out", "x.vdb"});
+  EXPECT_EQ(adaptive.exitCode, 2);
+  EXPECT_NE(adaptive.err.find("--distance-map applies to uniform placement only"), std::string::npos) << adaptive.err;
   EXPECT_FALSE(std::filesystem::exists(dir + "/x.vdb"));
 }
 

@@ -44,6 +44,8 @@ void DistanceMomentsAccumulator::reset() {
   weight_.assign(std::size_t(layout_.texels()), 0.0);
   sum_.assign(weight_.size(), 0.0);
   sumSquares_.assign(weight_.size(), 0.0);
+  nearestCosine_.assign(weight_.size(), -2.0);
+  nearestDistance_.assign(weight_.size(), 1.0);
 }
 
 void DistanceMomentsAccumulator::add(const Eigen::Vector3f* directions, const float* distances, int count) {
@@ -52,6 +54,10 @@ void DistanceMomentsAccumulator::add(const Eigen::Vector3f* directions, const fl
     const double distance = std::min(double(distances[r]) / layout_.cap, 1.0);
     for (std::size_t t = 0; t < texelDirections_.size(); ++t) {
       const double c = texelDirections_[t].dot(d);
+      if (c > nearestCosine_[t]) {
+        nearestCosine_[t] = c;
+        nearestDistance_[t] = distance;
+      }
       if (c <= cutoff_) continue;
       const double w = std::exp(sharpness_ * std::log(c));
       weight_[t] += w;
@@ -64,8 +70,9 @@ void DistanceMomentsAccumulator::add(const Eigen::Vector3f* directions, const fl
 void DistanceMomentsAccumulator::write(float* moments) const {
   for (std::size_t t = 0; t < weight_.size(); ++t) {
     const bool reached = weight_[t] > 0.0;
-    moments[2 * t] = float(reached ? sum_[t] / weight_[t] : 1.0);
-    moments[2 * t + 1] = float(reached ? sumSquares_[t] / weight_[t] : 1.0);
+    const double nearest = nearestDistance_[t];
+    moments[2 * t] = float(reached ? sum_[t] / weight_[t] : nearest);
+    moments[2 * t + 1] = float(reached ? sumSquares_[t] / weight_[t] : nearest * nearest);
   }
 }
 
@@ -96,11 +103,13 @@ DistanceMomentsRead readDistanceMoments(const DistanceMapLayout& layout, const f
 
 double leakWeight(const DistanceMapLayout& layout, const float* moments, const Eigen::Vector3d& probe,
                   const Eigen::Vector3d& point, const Eigen::Vector3d& normal, double spacing) {
-  constexpr double kNormalBiasSpacings = 0.25, kFloor = 1e-6, kCrush = 0.2;
+  // The paper's floor and crush threshold, divided by 1.2 with its back-face weight.
+  constexpr double kNormalBiasSpacings = 0.25, kFloor = 1e-6 / 1.2, kCrush = 0.2 / 1.2;
   const Eigen::Vector3d biased = point + kNormalBiasSpacings * spacing * normal;
   const Eigen::Vector3d fromProbe = biased - probe;
   const double r = fromProbe.norm();
-  if (!(r > 0.0)) return 1.0;  // the point sits on the probe: nothing can hide one from the other
+  // On the probe nothing can hide one from the other; beyond double's range there is no direction.
+  if (!(r > 0.0) || !std::isfinite(r)) return 1.0;
   const DistanceMomentsRead read = readDistanceMoments(layout, moments, fromProbe / r);
   if (read.open) return 1.0;
   const Eigen::Vector3d toProbe = -fromProbe / r;
@@ -112,7 +121,7 @@ double leakWeight(const DistanceMapLayout& layout, const float* moments, const E
     const double chebyshev = variance / (variance + beyond * beyond);
     weight *= chebyshev * chebyshev * chebyshev;
   }
-  weight = std::max(weight, kFloor);
+  if (!(weight >= kFloor)) weight = kFloor;
   if (weight < kCrush) weight *= weight * weight / (kCrush * kCrush);
   return weight;
 }

@@ -16,12 +16,13 @@ namespace baker {
 // 2t (mean distance) and 2t + 1 (mean squared distance), t = i + N·j, both in units of the cap
 // (mean/cap and mean square/cap², in [0, 1]: half floats hold them at any scene scale).
 //
-// Distances are capped at `cap` (2 spacings: beyond any point the probe's cell holds); a ray that
-// escapes counts as the cap, so a texel of 1 and 1 is open: no surface within reach. Each ray ω adds to every texel c with the weight max(0, c·ω)^k,
+// Distances are capped at `cap` (2.5 spacings: beyond any point of the probe's eight cells, √3
+// spacings, moved by a relocation and the reader's normal bias); a ray that escapes counts as the
+// cap, so a texel of 1 and 1 is open: no surface within reach. Each ray ω adds to every texel c with the weight max(0, c·ω)^k,
 // k = ln 2 / −ln cos(√π / N): half weight half a texel's width away (k = 28.0 for N = 8).
 struct DistanceMapLayout {
   static constexpr int kDefaultSize = 8;
-  static constexpr double kCapSpacings = 2.0;
+  static constexpr double kCapSpacings = 2.5;
   int size = kDefaultSize;  // texels per side
   double cap = 0.0;         // world units
 
@@ -44,7 +45,8 @@ class DistanceMomentsAccumulator {
   // `distances[r]`: to the first hit along unit `directions[r]`, or +∞ when the ray escaped. The
   // rays are a lattice's: each weighs the same.
   void add(const Eigen::Vector3f* directions, const float* distances, int count);
-  // 2·texels values in units of the cap; a texel no ray reached (weight 0) reads as open: 1 and 1.
+  // 2·texels values in units of the cap; a texel whose lobe no ray reached holds the nearest ray's
+  // distance.
   void write(float* moments) const;
 
  private:
@@ -52,6 +54,8 @@ class DistanceMomentsAccumulator {
   std::vector<Eigen::Vector3d> texelDirections_;
   double sharpness_, cutoff_;
   std::vector<double> weight_, sum_, sumSquares_;
+  // Per texel, the ray closest to it: what a texel no lobe reaches holds (with few rays, large N).
+  std::vector<double> nearestCosine_, nearestDistance_;
 };
 
 // The two moments at direction d in world units, bilinear between texel centres (clamped at the
@@ -65,10 +69,10 @@ DistanceMomentsRead readDistanceMoments(const DistanceMapLayout& layout, const f
 // The weight that turns away a probe hidden from a shading point, in (0, 1]:
 //  - exactly 1 where the probe's map reads open towards the point (mean at the cap: no surface
 //    within reach), so that in open space leak-aware sampling is trilinear sampling;
-//  - otherwise the back-face weight (((n·ω + 1)/2)² + 0.2)/1.2 (Majercik's, scaled to peak 1),
-//    ω from the point to the probe, times Chebyshev's bound σ²/(σ² + (r − μ)²) cubed when the
-//    point lies beyond the mean distance μ (r: from the probe to the point moved 0.25 spacings
-//    along its normal), floored at 1e-6 and crushed below 0.2 as in the paper.
+//  - otherwise the back-face weight (((n·ω + 1)/2)² + 0.2)/1.2, ω from the biased point to the
+//    probe, times Chebyshev's bound σ²/(σ² + (r − μ)²) cubed when the point lies beyond the mean
+//    distance μ (r: from the probe to the point moved 0.25 spacings along its normal), floored
+//    and crushed as in the paper: exactly the paper's weight divided by 1.2, so that it peaks at 1.
 double leakWeight(const DistanceMapLayout& layout, const float* moments, const Eigen::Vector3d& probe,
                   const Eigen::Vector3d& point, const Eigen::Vector3d& normal, double spacing);
 
