@@ -30,6 +30,7 @@ class HemisphereLobes : public SphericalFunctions {
   std::vector<Eigen::Vector3d> kinkPlanes() const override { return axes_; }
   std::optional<RadialLobes> radialLobes() const override;
   const std::vector<Eigen::Vector3d>& axes() const { return axes_; }
+  const Eigen::Vector3d& hemisphereAxis() const { return hemisphereAxis_; }
 
  private:
   AmbientDiceSrbfFunctions profile_{0.7, 0.3};
@@ -55,18 +56,17 @@ class AboveHorizon : public SphericalFunctions {
 class AmbientDiceHemisphere : public Basis {
  public:
   explicit AmbientDiceHemisphere(const Eigen::Vector3d& axis = Eigen::Vector3d::UnitY())
-      : axis_(axis), lobes_(axis), aboveHorizon_(lobes_, axis) {}
+      : lobes_(axis), aboveHorizon_(lobes_, axis) {}
   std::string name() const override { return "ad-hemi9"; }
   std::string family() const override { return "ambient-dice"; }
   const SphericalFunctions& functions(int) const override { return lobes_; }
   const SphericalFunctions& fitFunctions(int) const override { return aboveHorizon_; }
-  BasisParameters parameters() const override { return {std::nullopt, axis_}; }
-  std::optional<Eigen::Vector3d> hemisphere() const override { return axis_; }
+  BasisParameters parameters() const override { return {std::nullopt, lobes_.hemisphereAxis()}; }
+  std::optional<Eigen::Vector3d> hemisphere() const override { return lobes_.hemisphereAxis(); }
   int coefficientsPerLookup() const override { return 3 * HemisphereLobes::kLobes; }
   Eigen::Vector3f reconstruct(const float* coefficients, const Eigen::Vector3d& d) const override;
 
  private:
-  Eigen::Vector3d axis_;
   HemisphereLobes lobes_;
   AboveHorizon aboveHorizon_;
 };
