@@ -8,6 +8,7 @@
 
 #include "bake/AdaptiveBaker.h"
 #include "bake/ProbeConvergence.h"
+#include "bake/SkyProjection.h"
 #include "bake/TransportPlan.h"
 #include "basis/BasisRegistry.h"
 #include "basis/DiffuseResponse.h"
@@ -63,6 +64,10 @@ void recordSettings(const BakeJob& job, Volume& volume) {
   }
   volume.settings["scene"] = std::filesystem::path(request.scenePath).filename().string();
   volume.settings["scene_fnv1a64"] = fileHash(request.scenePath);
+  // The sky as the bake saw it: none when its effect was turned off.
+  const Environment seen = settings.transport.environment ? job.scene().environment : Environment();
+  volume.settings["sky"] = skyDescription(seen);
+  volume.sky = recordSky(seen);
 }
 
 // The grid at the default spacing (volume/ProbeGrid.h), widened until it fits this machine's
@@ -119,7 +124,7 @@ BakeJob::BakeJob(BakeRequest request, RayObserver* observer) : request_(std::mov
     grid_ = makeProbeGrid(scene_->bounds, *request_.spacing, kMaxBakeProbes);
     spacingReason_ = "as given";
   } else {
-    grid_ = defaultGrid(scene_->bounds, *basis_, DistanceMapLayout{request_.distanceMapSize(), 0.0}.valuesPerProbe(),
+    grid_ = defaultGrid(scene_->bounds, *basis_, DistanceMapLayout::baked(request_.distanceMapSize(), 0.0).valuesPerProbe(),
                         spacingReason_);
   }
   plan_ = planEffects(*scene_, takeCensus(*scene_));

@@ -127,7 +127,7 @@ Volume BrickBaker::emptyVolume(const ProbeGrid& grid, const ProbeRows& rows) con
   volume.offsets.assign(probes, Eigen::Vector3f::Zero());
   // Probes inside geometry keep zeros: every point lies beyond them, so leak-aware reading drops them.
   if (settings_.distanceMapSize > 0) {
-    volume.distanceMap = {settings_.distanceMapSize, DistanceMapLayout::kCapSpacings * grid.spacing};
+    volume.distanceMap = DistanceMapLayout::baked(settings_.distanceMapSize, DistanceMapLayout::kCapSpacings * grid.spacing);
     volume.distanceMoments.assign(probes * std::size_t(volume.distanceMomentsPerProbe()), 0.0f);
   }
   return volume;

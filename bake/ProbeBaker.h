@@ -34,7 +34,7 @@ struct BakeSettings {
   int rays = 256;  // a fixed count, or with adaptive convergence the size of round 0's lattices
   // Texels per side of each probe's distance map (volume/DistanceMoments.h); 0: none.
   int distanceMapSize = 0;
-  int distanceValuesPerProbe() const { return DistanceMapLayout{distanceMapSize, 0.0}.valuesPerProbe(); }
+  int distanceValuesPerProbe() const { return DistanceMapLayout::baked(distanceMapSize, 0.0).valuesPerProbe(); }
   ConvergenceSettings convergence;
   ProjectionOptions projection;
   TransportSettings transport;

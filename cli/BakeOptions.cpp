@@ -47,9 +47,10 @@ void addBakeOptions(CLI::App& app, BakeOptions& o, bool listed) {
   app.add_flag("--non-negative", r.nonNegative,
                "solve for coefficients >= 0 per probe instead of the linear projection");
   app.add_option("--distance-map", o.distanceMap,
-                 "texels per side of each probe's octahedral map of distances to the nearest surfaces, which "
-                 "`baker sample --leak-aware` reads to keep light from leaking through walls; 0: none; default 8 "
-                 "with uniform placement (adaptive volumes hold none)");
+                 "texels per side of each probe's octahedral map of distances to the nearest surfaces and of the "
+                 "sky's share, which `baker sample --leak-aware` reads to keep light from leaking through walls and "
+                 "`baker relight` to see the sky; 0: none (relight then reads the visibility coefficients); default "
+                 "8 with uniform placement (adaptive volumes hold none)");
   app.add_option("--signal", r.signal,
                  "what the coefficients hold: irradiance (E(n), one lookup per normal) or radiance (L(ω), whose "
                  "irradiance `baker sample` reconstructs from each function's diffuse response)")

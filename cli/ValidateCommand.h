@@ -11,7 +11,10 @@ namespace baker {
 //
 // Report keys (--report, --json), both modes: mode ("volume" or "reference"), reference, new,
 // error_definition, normals, floor, tolerance, passed, max_relative_error, mean_relative_error,
-// p99_relative_error, probes_compared, probes_outside_new_grid, worst_probes [{index, position,
+// p99_relative_error, level (mean over probes of the reference's mean irradiance), error_of_level
+// {mean, p99, max} (each probe's largest |E_new(n) - E_ref(n)| over normals and RGB / level; null
+// when the reference is black),
+// probes_compared, probes_outside_new_grid, worst_probes [{index, position,
 // relative_error, max_abs_error, reference_mean_irradiance}; against a reference also file, and
 // index is the probe's number in probes.json instead of [i, j, k]], validity_compared,
 // validity_changes [{index, position, reference, new}], sky_visibility_max_abs_difference (null

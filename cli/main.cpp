@@ -13,6 +13,7 @@
 #include "cli/MergeCommand.h"
 #include "cli/PreviewCommand.h"
 #include "cli/ProbeCommand.h"
+#include "cli/RelightCommand.h"
 #include "cli/ValidateCommand.h"
 #include "cli/ViewCommand.h"
 #include "cli/VolumeCommands.h"
@@ -32,6 +33,8 @@ const std::vector<Command>& commands() {
       {"bake", "baker SCENE [OPTIONS]", "bake an irradiance volume for a glTF scene", baker::runBakeCommand},
       {"merge", "baker merge OUT PART...", "the parts of a bake cut into shards, as one volume",
        baker::runMergeCommand},
+      {"relight", "baker relight VOLUME --env NEW.hdr --out OUT", "a volume under another sky, without a rebake",
+       baker::runRelightCommand},
       {"probe", "baker probe SCENE --at x,y,z", "bake single probes and print what they receive",
        baker::runProbeCommand},
       {"info", "baker info SCENE", "what baker loads from a scene and which effects a bake simulates",

@@ -112,7 +112,7 @@ bool isExrSliceDirectory(const std::string& path) { return directoryHolds(path, 
 void writeSliceSet(const Volume& volume, const Basis& basis, const std::string& directory, ExrPrecision precision,
                    const BrickAtlas* atlas, const nlohmann::json& extra) {
   requireFiniteVolume(volume);
-  const std::vector<VolumeGrid> grids = volumeGrids(basis, volume.visibilityPerProbe, volume.hasProbeStates(), volume.distanceMomentsPerProbe());
+  const std::vector<VolumeGrid> grids = volumeGrids(basis, volume.visibilityPerProbe, volume.hasProbeStates(), volume.distanceMap);
   const double scale = coefficientScale(volume, precision);
   const PixelType storage = precision == ExrPrecision::Half ? PixelType::Half : PixelType::Float;
   // An atlas holds exactly its bricks; the grid's own layout the bricks a file keeps.
@@ -325,7 +325,7 @@ Volume readSliceSet(const std::filesystem::path& dir, const nlohmann::json& m, c
   Volume volume = manifest.header.emptyVolume(manifestPath, parts);
 
   const std::unique_ptr<Basis> basis = makeBasis(volume.basisName);
-  const std::vector<VolumeGrid> grids = volumeGrids(*basis, volume.visibilityPerProbe, manifest.header.hasProbeStates, volume.distanceMomentsPerProbe());
+  const std::vector<VolumeGrid> grids = volumeGrids(*basis, volume.visibilityPerProbe, manifest.header.hasProbeStates, volume.distanceMap);
   std::vector<float> pixels;
   for (int k = 0; k < depth; ++k) readSlice(dir, manifest, k, manifestPath, grids, pixels, volume);
   requireFiniteValues(volume, path);

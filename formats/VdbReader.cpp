@@ -67,7 +67,7 @@ void readLevelGrids(openvdb::io::File& file, const std::string& path, const std:
                     Volume& volume) {
   const std::unique_ptr<Basis> basis = makeBasis(volume.basisName);
   const ProbeGrid& g = volume.grid;
-  for (const VolumeGrid& spec : volumeGrids(*basis, volume.visibilityPerProbe, hasProbeStates, volume.distanceMomentsPerProbe())) {
+  for (const VolumeGrid& spec : volumeGrids(*basis, volume.visibilityPerProbe, hasProbeStates, volume.distanceMap)) {
     const std::string name = prefix + spec.name;
     if (spec.kind == VolumeGrid::Kind::ProbeState)
       readVoxels<openvdb::Int32Grid>(file, name, g, path, [&](std::int64_t p, int state) {
@@ -207,7 +207,10 @@ AdaptiveVolume readLevelsOf(openvdb::io::File& file, const openvdb::MetaMap& met
     header.heldMasks = std::move(masks);
     checks.held(level, header.heldBricks->size());
     volume.levels.push_back(header.emptyVolume(path));
-    if (level > 0) volume.levels.back().settings.clear();
+    if (level > 0) {
+      volume.levels.back().settings.clear();
+      volume.levels.back().sky.reset();
+    }
     readLevelGrids(file, path, levelGridPrefix(level), true, volume.levels.back());
     requireFiniteValues(volume.levels.back(), path);
   }

@@ -66,6 +66,7 @@ Volume VolumeHeader::emptyVolume(const std::string& path, PartReading parts) con
   // that a damaged size is refused rather than exhausting memory.
   Volume volume;
   readDistanceMap(text, volume, path);
+  readSky(text, volume, path);
   const double needed =
       volumeMemoryBytes(std::min(heldProbes, gridProbes), *basis, volume.distanceMomentsPerProbe()) / 2;
   if (needed > double(physicalMemoryBytes()))
@@ -108,11 +109,16 @@ void requireFiniteValues(const Volume& v, const std::string& path) {
     if (!std::isfinite(v.visibility[i]))
       throw InputError(fmt::format("{}: probe {} has a non-finite visibility value", path,
                                    v.rows.probeAt(v.grid, std::int64_t(i / v.visibilityPerProbe))));
+  const std::size_t perProbe = std::size_t(std::max(1, v.distanceMomentsPerProbe()));
+  const std::size_t moments = 2 * std::size_t(v.distanceMap.texels());
   for (std::size_t i = 0; i < v.distanceMoments.size(); ++i)
-    if (!(v.distanceMoments[i] >= 0.0f && v.distanceMoments[i] <= 1.0f))
-      throw InputError(fmt::format("{}: probe {} has a distance moment (distance_moments_{:03}) of {}, outside [0, 1]",
-                                   path, v.rows.probeAt(v.grid, std::int64_t(i / v.distanceMomentsPerProbe())),
-                                   i % std::size_t(v.distanceMomentsPerProbe()), v.distanceMoments[i]));
+    if (!(v.distanceMoments[i] >= 0.0f && v.distanceMoments[i] <= 1.0f)) {
+      const std::size_t value = i % perProbe;
+      const std::string grid = value < moments ? fmt::format("distance_moments_{:03}", value)
+                                               : fmt::format("sky_visibility_map_{:03}", value - moments);
+      throw InputError(fmt::format("{}: probe {} has a distance-map value ({}) of {}, outside [0, 1]", path,
+                                   v.rows.probeAt(v.grid, std::int64_t(i / perProbe)), grid, v.distanceMoments[i]));
+    }
   for (const Eigen::Vector3f& o : v.offsets)
     if (!o.allFinite()) throw InputError(fmt::format("{}: a probe offset is not finite", path));
 }

@@ -12,7 +12,7 @@
 namespace baker {
 
 std::vector<VolumeGrid> volumeGrids(const Basis& basis, int visibilityPerProbe, bool hasProbeStates,
-                                    int distanceMomentsPerProbe) {
+                                    const DistanceMapLayout& distanceMap) {
   std::vector<VolumeGrid> grids;
   if (basis.channelsShareFunctions()) {
     for (int f = 0; f < basis.coefficientCount(0); ++f)
@@ -26,8 +26,12 @@ std::vector<VolumeGrid> volumeGrids(const Basis& basis, int visibilityPerProbe, 
   }
   for (int f = 0; f < visibilityPerProbe; ++f)
     grids.push_back({fmt::format("visibility_{:02}", f), VolumeGrid::Kind::Visibility, 1, {f, 0, 0}});
-  for (int f = 0; f < distanceMomentsPerProbe; ++f)
+  const int moments = distanceMap.size > 0 ? 2 * distanceMap.texels() : 0;
+  for (int f = 0; f < moments; ++f)
     grids.push_back({fmt::format("distance_moments_{:03}", f), VolumeGrid::Kind::DistanceMoments, 1, {f, 0, 0}});
+  if (distanceMap.size > 0 && distanceMap.skyVisibility)
+    for (int t = 0; t < distanceMap.texels(); ++t)
+      grids.push_back({fmt::format("sky_visibility_map_{:03}", t), VolumeGrid::Kind::SkyVisibilityMap, 1, {moments + t, 0, 0}});
   if (hasProbeStates) {
     grids.push_back({"probe_state", VolumeGrid::Kind::ProbeState, 1, {0, 0, 0}});
     grids.push_back({"probe_offset", VolumeGrid::Kind::ProbeOffset, 3, {0, 1, 2}});
@@ -49,6 +53,7 @@ float gridValue(const Volume& v, const VolumeGrid& grid, int component, std::int
     case VolumeGrid::Kind::Coefficients: return v.coefficients[row * v.coefficientsPerProbe + grid.index[component]];
     case VolumeGrid::Kind::Visibility: return v.visibility[row * v.visibilityPerProbe + grid.index[component]];
     case VolumeGrid::Kind::DistanceMoments:
+    case VolumeGrid::Kind::SkyVisibilityMap:
       return v.distanceMoments[row * v.distanceMomentsPerProbe() + grid.index[component]];
     case VolumeGrid::Kind::ProbeState: return float(v.states[row]);
     case VolumeGrid::Kind::ProbeOffset: return v.offsets[row][component];
@@ -63,6 +68,7 @@ bool setGridValue(Volume& v, const VolumeGrid& grid, int component, std::int64_t
     case VolumeGrid::Kind::Coefficients: v.coefficients[row * v.coefficientsPerProbe + grid.index[component]] = value; break;
     case VolumeGrid::Kind::Visibility: v.visibility[row * v.visibilityPerProbe + grid.index[component]] = value; break;
     case VolumeGrid::Kind::DistanceMoments:
+    case VolumeGrid::Kind::SkyVisibilityMap:
       v.distanceMoments[row * v.distanceMomentsPerProbe() + grid.index[component]] = value;
       break;
     case VolumeGrid::Kind::ProbeState: v.states[row] = ProbeState(std::uint8_t(value)); break;

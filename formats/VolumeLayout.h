@@ -14,11 +14,13 @@ namespace baker {
 //    the channel, e.g. "Y_NN", "Co_NN", "Cg_NN";
 //  - sky visibility, function NN of channel 0's set: a scalar grid "visibility_NN";
 //  - distance moments, value NNN of the probe's distance map (volume/DistanceMoments.h): a scalar
-//    grid "distance_moments_NNN";
+//    grid "distance_moments_NNN"; when the map carries the sky's, texel NNN's escaped share is
+//    "sky_visibility_map_NNN";
 //  - "probe_state" (0 inside geometry and filled from neighbours, 1 valid, 2 moved out of
 //    geometry) and "probe_offset" (world-space move from the grid position, three components).
 struct VolumeGrid {
-  enum class Kind { Coefficients, Visibility, DistanceMoments, ProbeState, ProbeOffset };
+  // DistanceMoments and SkyVisibilityMap both index the probe's distance-map values.
+  enum class Kind { Coefficients, Visibility, DistanceMoments, SkyVisibilityMap, ProbeState, ProbeOffset };
   std::string name;
   Kind kind = Kind::Coefficients;
   int components = 1;  // 1 or 3
@@ -28,7 +30,7 @@ struct VolumeGrid {
 };
 
 std::vector<VolumeGrid> volumeGrids(const Basis& basis, int visibilityPerProbe, bool hasProbeStates,
-                                    int distanceMomentsPerProbe);
+                                    const DistanceMapLayout& distanceMap);
 
 // Names of a grid's components where a format stores them one by one (EXR channels):
 // "rgb_00.R", "probe_offset.X", or the grid's own name for a scalar grid.

@@ -20,6 +20,7 @@ const char* kindName(VolumeGrid::Kind kind) {
     case VolumeGrid::Kind::Coefficients: return "irradiance_coefficients";
     case VolumeGrid::Kind::Visibility: return "sky_visibility_coefficients";
     case VolumeGrid::Kind::DistanceMoments: return "distance_moments";
+    case VolumeGrid::Kind::SkyVisibilityMap: return "sky_visibility_map";
     case VolumeGrid::Kind::ProbeState: return "probe_state";
     case VolumeGrid::Kind::ProbeOffset: return "probe_offset";
   }
@@ -35,10 +36,10 @@ std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume
 std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume& volume, const Basis& basis,
                                                                     bool hasProbeStates) {
   nlohmann::json layout = nlohmann::json::array();
-  for (const VolumeGrid& g : volumeGrids(basis, volume.visibilityPerProbe, hasProbeStates, volume.distanceMomentsPerProbe())) {
+  for (const VolumeGrid& g : volumeGrids(basis, volume.visibilityPerProbe, hasProbeStates, volume.distanceMap)) {
     nlohmann::json entry = {{"name", g.name}, {"kind", kindName(g.kind)}, {"components", g.components}};
     if (g.kind == VolumeGrid::Kind::Coefficients || g.kind == VolumeGrid::Kind::Visibility ||
-        g.kind == VolumeGrid::Kind::DistanceMoments)
+        g.kind == VolumeGrid::Kind::DistanceMoments || g.kind == VolumeGrid::Kind::SkyVisibilityMap)
       entry["index"] = std::vector<int>(g.index, g.index + g.components);
     layout.push_back(entry);
   }
@@ -66,6 +67,7 @@ std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume
   if (radiance) meta.push_back({"baker.specular", specularBlendOf(basis)->describe().dump()});
   if (volume.distanceMomentsPerProbe() > 0)
     meta.push_back({kDistanceMapKey, distanceMapDescription(volume.distanceMap).dump()});
+  if (volume.sky) meta.push_back({kSkyKey, skyMetadata(*volume.sky).dump()});
   for (const auto& [key, value] : volume.settings) meta.push_back({"baker.setting." + key, value});
   if (volume.shard) {
     meta.push_back({"baker.shard", shardName(*volume.shard)});
@@ -130,6 +132,10 @@ nlohmann::json distanceMapDescription(const DistanceMapLayout& layout) {
            "distance_moments_NNN: value 2t is the mean distance to the first surface, 2t + 1 the mean squared "
            "distance, of texel t = i + size * j, in units of cap and cap^2; rays that escape, and distances beyond "
            "the cap, count as the cap; each ray w weighs max(0, c.w)^sharpness in the texel of direction c"},
+          {"sky_visibility", layout.skyVisibility},
+          {"sky_visibility_values",
+           "with sky_visibility: sky_visibility_map_NNN, value 2 * size * size + t of the probe, is the share of texel "
+           "t's rays (weighted as the moments) that escaped to the sky, in [0, 1]"},
           {"invalid_probes", "probes inside geometry hold zeros: leak-aware readers turn them away"}};
 }
 
@@ -142,6 +148,7 @@ void readDistanceMap(const std::vector<std::pair<std::string, std::string>>& met
     const nlohmann::json map = nlohmann::json::parse(entry->second);
     layout.size = map.at("size").get<int>();
     layout.cap = map.at("cap").get<double>();
+    layout.skyVisibility = map.value("sky_visibility", false);
   } catch (const nlohmann::json::exception& e) {
     throw InputError(fmt::format("{}: {} is not a distance map's description: {}", path, kDistanceMapKey, oneLine(e.what())));
   }
@@ -152,6 +159,46 @@ void readDistanceMap(const std::vector<std::pair<std::string, std::string>>& met
     throw InputError(fmt::format("{}: {} \"cap\" must be a positive distance whose square is finite", path,
                                  kDistanceMapKey));
   volume.distanceMap = layout;
+}
+
+nlohmann::json skyMetadata(const SkyRadiance& sky) {
+  return {{"width", sky.width},
+          {"height", sky.height},
+          {"radiance", sky.rgb},
+          {"layout",
+           "lat-long of world directions, +Y up: texel (i, j), row 0 at the top, covers u in [i, i + 1) / width and v "
+           "in [j, j + 1) / height, phi = 2 pi (u - 1/2), theta = pi v, d = (sin theta cos phi, cos theta, sin theta "
+           "sin phi); radiance holds r, g, b of each texel, row by row from the top: its mean radiance (flux / solid "
+           "angle)"},
+          {"meaning",
+           "the sky the volume's light came from (setting sky): relighting takes it away through each probe's "
+           "visibility before adding another (docs/RELIGHTING.md)"}};
+}
+
+void readSky(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume, const std::string& path) {
+  const auto entry = std::find_if(metadata.begin(), metadata.end(), [](const auto& e) { return e.first == kSkyKey; });
+  if (entry == metadata.end()) return;
+  SkyRadiance sky;
+  try {
+    const nlohmann::json j = nlohmann::json::parse(entry->second);
+    sky.width = j.at("width").get<int>();
+    sky.height = j.at("height").get<int>();
+    if (sky.width != SkyRadiance::kWidth || sky.height != SkyRadiance::kHeight)
+      throw InputError(fmt::format("{}: {} is {} x {} texels; this version reads {} x {}", path, kSkyKey, sky.width,
+                                   sky.height, SkyRadiance::kWidth, SkyRadiance::kHeight));
+    const nlohmann::json& values = j.at("radiance");
+    if (!values.is_array() || values.size() != sky.rgb.size())
+      throw InputError(fmt::format("{}: {} \"radiance\" must hold {} numbers (r, g, b per texel)", path, kSkyKey,
+                                   sky.rgb.size()));
+    for (std::size_t i = 0; i < sky.rgb.size(); ++i) sky.rgb[i] = values[i].get<float>();
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(fmt::format("{}: {} is not a sky's description: {}", path, kSkyKey, oneLine(e.what())));
+  }
+  for (const float value : sky.rgb)
+    if (!(std::isfinite(value) && value >= 0.0f))
+      throw InputError(fmt::format("{}: {} \"radiance\" holds {}; radiance is finite and not negative", path,
+                                   kSkyKey, value));
+  volume.sky = std::move(sky);
 }
 
 }  // namespace baker

@@ -48,6 +48,14 @@ nlohmann::json distanceMapDescription(const DistanceMapLayout& layout);
 void readDistanceMap(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume,
                      const std::string& path);
 
+// The sky a volume's light came from (volume/SkyRadiance.h), under this key (JSON): "width",
+// "height", "radiance" (r, g, b per texel) and the layout in words.
+constexpr const char* kSkyKey = "baker.sky";
+nlohmann::json skyMetadata(const SkyRadiance& sky);
+// Recovers volume.sky from that key (none without it); InputError naming `path` and the key when
+// it is malformed, of another size, or holds a radiance that is negative or not finite.
+void readSky(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume, const std::string& path);
+
 // Recovers volume.settings from "baker.setting.*" keys.
 void readSettings(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume);
 

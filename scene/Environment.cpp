@@ -58,7 +58,7 @@ Environment Environment::latLong(int width, int height, std::vector<float> rgb, 
   // within it (uniform in φ and cos θ) is luminance / integral everywhere.
   std::vector<double> weights(std::size_t(width) * height);
   for (int j = 0; j < height; ++j) {
-    const double solidAngle = 2.0 * kPi / width * (cosEdge(j, height) - cosEdge(j + 1, height));
+    const double solidAngle = env.texelSolidAngle(j);
     for (int i = 0; i < width; ++i) {
       const std::size_t t = std::size_t(j) * width + i;
       weights[t] = double(luminance(Eigen::Vector3f::Map(&env.rgb_[3 * t]))) * solidAngle;
@@ -94,6 +94,21 @@ Eigen::Vector2i Environment::texelOf(const Eigen::Vector3f& direction) const {
   const double u = 0.5 + std::atan2(double(d.z()), double(d.x())) / (2.0 * kPi);
   const double v = std::acos(std::clamp(double(d.y()), -1.0, 1.0)) / kPi;
   return {std::clamp(int(std::floor(u * width_)), 0, width_ - 1), std::clamp(int(std::floor(v * height_)), 0, height_ - 1)};
+}
+
+Eigen::Vector3d Environment::texelCentre(int column, int row) const {
+  return directionAt((column + 0.5) / width_, (row + 0.5) / height_);
+}
+
+Eigen::Vector3d Environment::directionAt(double u, double v) const {
+  const double phi = 2.0 * kPi * (u - 0.5), theta = kPi * v;
+  const Eigen::Vector3d m(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+  const double c = double(cosRotation_), s = double(sinRotation_);
+  return {c * m.x() + s * m.z(), m.y(), -s * m.x() + c * m.z()};
+}
+
+double Environment::texelSolidAngle(int row) const {
+  return 2.0 * kPi / width_ * (cosEdge(row, height_) - cosEdge(row + 1, height_));
 }
 
 Eigen::Vector3f Environment::radiance(const Eigen::Vector3f& direction) const {

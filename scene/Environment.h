@@ -61,6 +61,16 @@ class Environment {
 
   // The lat-long texel that `direction` looks at (after the rotation): column, row.
   Eigen::Vector2i texelOf(const Eigen::Vector3f& direction) const;
+  // For sums over a map's texels (its integrals: the map is piecewise constant): the world
+  // direction through texel (column, row)'s centre, the exact solid angle of a texel of that row,
+  // and its radiance (× intensity).
+  Eigen::Vector3d texelCentre(int column, int row) const;
+  // The world direction of map coordinates (u, v) ∈ [0, 1]², after the rotation.
+  Eigen::Vector3d directionAt(double u, double v) const;
+  double texelSolidAngle(int row) const;
+  Eigen::Vector3f texelRadiance(int column, int row) const {
+    return Eigen::Vector3f::Map(&rgb_[3 * (std::size_t(row) * width_ + column)]);
+  }
 
  private:
   Eigen::Vector3f toMap(const Eigen::Vector3f& world) const;

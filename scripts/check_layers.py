@@ -22,6 +22,8 @@ MAY_INCLUDE = {
     "viewer": {"common", "images", "scene", "basis", "volume", "formats", "viewer"},
     # A bake spread over MPI ranks: each bakes a shard, rank 0 assembles and writes.
     "scaleout": {"common", "images", "scene", "basis", "volume", "bake", "formats", "scaleout"},
+    # A volume under another sky: the new sky read as the bake reads it, the volume as every command does.
+    "relight": {"common", "images", "scene", "basis", "volume", "bake", "formats", "relight"},
 }
 LIBRARY = set(MAY_INCLUDE)
 INCLUDE = re.compile(r'^\s*#\s*include\s+[<"]([^">]+)[">]')

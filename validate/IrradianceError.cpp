@@ -60,6 +60,15 @@ RelativeErrors relativeErrors(const std::vector<ProbeDifference>& differences) {
   r.mean = std::accumulate(sorted.begin(), sorted.end(), 0.0) / double(sorted.size());
   const std::size_t rank = std::size_t(std::ceil(0.99 * double(sorted.size())));
   r.p99 = sorted[std::max<std::size_t>(rank, 1) - 1];
+  r.level = std::max(referenceLevel, 0.0) / double(differences.size());
+  if (r.level > 0.0) {
+    std::vector<double> ofLevel;
+    for (const ProbeDifference& d : differences) ofLevel.push_back(d.maxAbsolute / r.level);
+    std::sort(ofLevel.begin(), ofLevel.end());
+    r.levelMax = ofLevel.back();
+    r.levelMean = std::accumulate(ofLevel.begin(), ofLevel.end(), 0.0) / double(ofLevel.size());
+    r.levelP99 = ofLevel[std::max<std::size_t>(rank, 1) - 1];
+  }
   return r;
 }
 

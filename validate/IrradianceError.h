@@ -40,6 +40,10 @@ struct RelativeErrors {
   double max = 0.0;
   double mean = 0.0;
   double p99 = 0.0;
+  // The same differences as shares of the scene's level (the mean over probes of the reference's
+  // mean irradiance), where a dark probe's own mean would magnify them: what a viewer sees.
+  double level = 0.0;
+  double levelMean = 0.0, levelP99 = 0.0, levelMax = 0.0;
 };
 
 RelativeErrors relativeErrors(const std::vector<ProbeDifference>& differences);

@@ -28,6 +28,10 @@ nlohmann::json commonJson(const std::string& mode, const std::string& reference,
           {"max_relative_error", errors.max},
           {"mean_relative_error", errors.mean},
           {"p99_relative_error", errors.p99},
+          {"level", errors.level},
+          {"error_of_level", errors.level > 0.0 ? nlohmann::json{{"mean", errors.levelMean}, {"p99", errors.levelP99},
+                                                                 {"max", errors.levelMax}}
+                                                : nlohmann::json(nullptr)},
           {"probes_compared", compared},
           {"probes_outside_new_grid", outside}};
 }

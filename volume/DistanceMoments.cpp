@@ -44,25 +44,30 @@ void DistanceMomentsAccumulator::reset() {
   weight_.assign(std::size_t(layout_.texels()), 0.0);
   sum_.assign(weight_.size(), 0.0);
   sumSquares_.assign(weight_.size(), 0.0);
+  escaped_.assign(weight_.size(), 0.0);
   nearestCosine_.assign(weight_.size(), -2.0);
   nearestDistance_.assign(weight_.size(), 1.0);
+  nearestEscaped_.assign(weight_.size(), 0.0);
 }
 
 void DistanceMomentsAccumulator::add(const Eigen::Vector3f* directions, const float* distances, int count) {
   for (int r = 0; r < count; ++r) {
     const Eigen::Vector3d d = directions[r].cast<double>();
     const double distance = std::min(double(distances[r]) / layout_.cap, 1.0);
+    const double escaped = std::isinf(distances[r]) ? 1.0 : 0.0;
     for (std::size_t t = 0; t < texelDirections_.size(); ++t) {
       const double c = texelDirections_[t].dot(d);
       if (c > nearestCosine_[t]) {
         nearestCosine_[t] = c;
         nearestDistance_[t] = distance;
+        nearestEscaped_[t] = escaped;
       }
       if (c <= cutoff_) continue;
       const double w = std::exp(sharpness_ * std::log(c));
       weight_[t] += w;
       sum_[t] += w * distance;
       sumSquares_[t] += w * distance * distance;
+      escaped_[t] += w * escaped;
     }
   }
 }
@@ -73,10 +78,12 @@ void DistanceMomentsAccumulator::write(float* moments) const {
     const double nearest = nearestDistance_[t];
     moments[2 * t] = float(reached ? sum_[t] / weight_[t] : nearest);
     moments[2 * t + 1] = float(reached ? sumSquares_[t] / weight_[t] : nearest * nearest);
+    if (layout_.skyVisibility)
+      moments[weight_.size() * 2 + t] = float(reached ? escaped_[t] / weight_[t] : nearestEscaped_[t]);
   }
 }
 
-DistanceMomentsRead readDistanceMoments(const DistanceMapLayout& layout, const float* moments, const Eigen::Vector3d& d) {
+TexelBlend blendTexels(const DistanceMapLayout& layout, const Eigen::Vector3d& d) {
   const Eigen::Vector2d uv = octahedralEncode(d);
   const int n = layout.size;
   int lo[2];
@@ -86,12 +93,22 @@ DistanceMomentsRead readDistanceMoments(const DistanceMapLayout& layout, const f
     lo[a] = std::clamp(int(std::floor(x)), 0, n - 2);
     f[a] = std::clamp(x - lo[a], 0.0, 1.0);
   }
+  TexelBlend blend;
+  for (int corner = 0; corner < 4; ++corner) {
+    const int di = corner & 1, dj = corner >> 1;
+    blend.weight[corner] = (di ? f[0] : 1.0 - f[0]) * (dj ? f[1] : 1.0 - f[1]);
+    blend.texel[corner] = lo[0] + di + n * (lo[1] + dj);
+  }
+  return blend;
+}
+
+DistanceMomentsRead readDistanceMoments(const DistanceMapLayout& layout, const float* moments, const Eigen::Vector3d& d) {
+  const TexelBlend blend = blendTexels(layout, d);
   DistanceMomentsRead read;
   read.open = true;
   for (int corner = 0; corner < 4; ++corner) {
-    const int di = corner & 1, dj = corner >> 1;
-    const double w = (di ? f[0] : 1.0 - f[0]) * (dj ? f[1] : 1.0 - f[1]);
-    const int t = lo[0] + di + n * (lo[1] + dj);
+    const double w = blend.weight[corner];
+    const int t = blend.texel[corner];
     read.mean += w * moments[2 * t];
     read.meanSquare += w * moments[2 * t + 1];
     if (w > 0.0 && moments[2 * t] < 1.0f) read.open = false;

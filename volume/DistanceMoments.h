@@ -25,9 +25,16 @@ struct DistanceMapLayout {
   static constexpr double kCapSpacings = 2.5;
   int size = kDefaultSize;  // texels per side
   double cap = 0.0;         // world units
+  // Whether a third map follows the two moments: per texel t, value 2·texels + t, the share of the
+  // lobe's rays that escaped to the sky (weighted as the moments are): the sky visibility
+  // relighting reads at the map's resolution (volume/SkyTransfer.h). Volumes before it hold none.
+  bool skyVisibility = false;
+
+  // The layout a bake writes now: the moments and the sky's share.
+  static DistanceMapLayout baked(int size, double cap) { return {size, cap, true}; }
 
   int texels() const { return size * size; }
-  int valuesPerProbe() const { return 2 * texels(); }
+  int valuesPerProbe() const { return (skyVisibility ? 3 : 2) * texels(); }
   double sharpness() const;
   Eigen::Vector3d texelDirection(int texel) const;
 };
@@ -45,18 +52,26 @@ class DistanceMomentsAccumulator {
   // `distances[r]`: to the first hit along unit `directions[r]`, or +∞ when the ray escaped. The
   // rays are a lattice's: each weighs the same.
   void add(const Eigen::Vector3f* directions, const float* distances, int count);
-  // 2·texels values in units of the cap; a texel whose lobe no ray reached holds the nearest ray's
-  // distance.
+  // 2·texels values in units of the cap, then (with skyVisibility) texels escaped shares; a texel
+  // whose lobe no ray reached holds the nearest ray's.
   void write(float* moments) const;
 
  private:
   DistanceMapLayout layout_;
   std::vector<Eigen::Vector3d> texelDirections_;
   double sharpness_, cutoff_;
-  std::vector<double> weight_, sum_, sumSquares_;
+  std::vector<double> weight_, sum_, sumSquares_, escaped_;
   // Per texel, the ray closest to it: what a texel no lobe reaches holds (with few rays, large N).
-  std::vector<double> nearestCosine_, nearestDistance_;
+  std::vector<double> nearestCosine_, nearestDistance_, nearestEscaped_;
 };
+
+// The four texels a read at direction d blends, bilinearly between texel centres (clamped at the
+// map's edges), and their weights.
+struct TexelBlend {
+  int texel[4] = {0, 0, 0, 0};
+  double weight[4] = {0.0, 0.0, 0.0, 0.0};
+};
+TexelBlend blendTexels(const DistanceMapLayout& layout, const Eigen::Vector3d& d);
 
 // The two moments at direction d in world units, bilinear between texel centres (clamped at the
 // map's edges); `open` when each texel read holds the cap: no surface within reach that way.

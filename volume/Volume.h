@@ -10,6 +10,7 @@
 #include "volume/ProbeRows.h"
 #include "volume/ProbeState.h"
 #include "volume/Shard.h"
+#include "volume/SkyRadiance.h"
 
 namespace baker {
 
@@ -32,6 +33,9 @@ struct Volume {
   // distanceMap.valuesPerProbe() values, or none (size 0) in volumes without them.
   DistanceMapLayout distanceMap{0, 0.0};
   std::vector<float> distanceMoments;
+  // The sky its light came from (setting "sky" names it), or none in volumes from before it was
+  // kept: what relighting takes away.
+  std::optional<SkyRadiance> sky;
   // Per probe: whether it was baked where the grid puts it, moved out of geometry by `offsets`
   // (world units), or found inside geometry and filled from its neighbours.
   std::vector<ProbeState> states;

@@ -41,8 +41,9 @@ void requireSameBake(const Volume& part, const std::string& name, const Volume& 
     mismatch("baker.visibility_per_probe", std::to_string(part.visibilityPerProbe),
              std::to_string(first.visibilityPerProbe));
   const DistanceMapLayout &d = part.distanceMap, &e = first.distanceMap;
-  if (d.size != e.size || d.cap != e.cap)
-    mismatch("baker.distance_map", fmt::format("size {} cap {:.17g}", d.size, d.cap), fmt::format("size {} cap {:.17g}", e.size, e.cap));
+  if (d.size != e.size || d.cap != e.cap || d.skyVisibility != e.skyVisibility)
+    mismatch("baker.distance_map", fmt::format("size {} cap {:.17g} sky {}", d.size, d.cap, d.skyVisibility),
+             fmt::format("size {} cap {:.17g} sky {}", e.size, e.cap, e.skyVisibility));
   const auto setting = [](const Volume& v, const std::string& key) {
     const auto it = v.settings.find(key);
     return it == v.settings.end() ? std::string("none") : "\"" + it->second + "\"";
@@ -64,6 +65,7 @@ Volume volumeWithoutValues(const Volume& volume) {
   header.coefficientsPerProbe = volume.coefficientsPerProbe;
   header.visibilityPerProbe = volume.visibilityPerProbe;
   header.distanceMap = volume.distanceMap;
+  header.sky = volume.sky;
   header.settings = volume.settings;
   header.shard = volume.shard;
   return header;

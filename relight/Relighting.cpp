@@ -1,0 +1,178 @@
+#include "relight/Relighting.h"
+
+#include <fmt/format.h>
+#include <tbb/parallel_for.h>
+
+#include <atomic>
+#include <algorithm>
+#include <chrono>
+#include <optional>
+#include <utility>
+
+#include "bake/SkyProjection.h"
+#include "basis/StoredSignal.h"
+#include "common/Error.h"
+#include "common/Timing.h"
+#include "formats/VolumeReader.h"
+#include "volume/InvalidProbeFill.h"
+#include "volume/SkyTransfer.h"
+
+namespace baker {
+namespace {
+
+constexpr double kConcentratedSolidAngle = 0.01, kConcentratedShare = 0.25;
+
+std::string setting(const Volume& volume, const std::string& key, const std::string& fallback) {
+  const auto it = volume.settings.find(key);
+  return it == volume.settings.end() ? fallback : it->second;
+}
+
+bool simulated(const Volume& volume, const std::string& effect) {
+  return setting(volume, "effect." + effect, "off") == "on";
+}
+
+// A count the bake recorded (0 when it recorded none); InputError naming the key when it is not one.
+int countSetting(const Volume& volume, const std::string& key, const std::string& name) {
+  const std::string text = setting(volume, key, "0");
+  try {
+    std::size_t used = 0;
+    const int count = std::stoi(text, &used);
+    if (used == text.size() && count >= 0) return count;
+  } catch (const std::exception&) {
+  }
+  throw InputError(fmt::format("{}: baker.setting.{} \"{}\" is not a count", name, key, text));
+}
+
+// The share of the sky's flux in its brightest 0.01 sr (the studio light of studio_small_03 holds
+// most of its flux in 0.0074 sr): light that relighting through a probe's blurred visibility cannot
+// take away or add where its shadows' edges are.
+double concentratedShare(const SkyRadiance& sky) {
+  struct Texel {
+    double radiance, solidAngle;
+  };
+  std::vector<Texel> texels;
+  double total = 0.0;
+  for (int row = 0; row < sky.height; ++row) {
+    const double solidAngle = latLongSolidAngle(1.0 / sky.width, double(row) / sky.height, double(row + 1) / sky.height);
+    for (int column = 0; column < sky.width; ++column) {
+      const double radiance = sky.texel(column, row).mean();
+      texels.push_back({radiance, solidAngle});
+      total += radiance * solidAngle;
+    }
+  }
+  if (!(total > 0.0)) return 0.0;
+  std::sort(texels.begin(), texels.end(), [](const Texel& a, const Texel& b) { return a.radiance > b.radiance; });
+  double flux = 0.0, solidAngle = 0.0;
+  for (const Texel& t : texels) {
+    if (solidAngle >= kConcentratedSolidAngle) break;
+    flux += t.radiance * t.solidAngle;
+    solidAngle += t.solidAngle;
+  }
+  return flux / total;
+}
+
+// The stored visibility `transfer` reads, of the probe in `row`.
+Eigen::VectorXd visibilityOf(const Volume& level, const SkyTransfer& transfer, std::int64_t row) {
+  if (!transfer.readsMap())
+    return Eigen::Map<const Eigen::VectorXf>(level.visibility.data() + row * level.visibilityPerProbe,
+                                             level.visibilityPerProbe)
+        .cast<double>();
+  const int texels = level.distanceMap.texels();
+  return Eigen::Map<const Eigen::VectorXf>(
+             level.distanceMoments.data() + row * level.distanceMomentsPerProbe() + 2 * texels, texels)
+      .cast<double>();
+}
+
+void relightLevel(Volume& level, const SkyTransfer& transfer, const std::vector<Eigen::MatrixXd>& operators,
+                  const Basis& basis, const std::string& name) {
+  const std::int64_t rows = level.rows.count(level.grid);
+  std::atomic<bool> finite{true};
+  tbb::parallel_for(std::int64_t(0), rows, [&](std::int64_t row) {
+    const Eigen::VectorXd v = visibilityOf(level, transfer, row);
+    float* coefficients = level.coefficients.data() + row * level.coefficientsPerProbe;
+    for (int c = 0; c < 3; ++c) {
+      Eigen::Map<Eigen::VectorXf> channel(coefficients + basis.coefficientOffset(c), basis.coefficientCount(c));
+      const Eigen::VectorXf relit = (channel.cast<double>() + operators[std::size_t(c)] * v).cast<float>();
+      if (!relit.allFinite()) finite = false;
+      channel = relit;
+    }
+  });
+  if (!finite)
+    throw NumericalError(fmt::format("{}: relit values leave single precision; is the new sky's intensity sensible?", name));
+  // Probes inside geometry hold their neighbours' light, as the bake filled them; their maps are
+  // zeros, so they take their relit neighbours' again. A shard's part leaves that to the merge.
+  if (transfer.readsMap() && !level.shard && !level.states.empty())
+    fillInvalidProbes(level.grid, level.rows, level.states, level.coefficientsPerProbe, level.coefficients);
+}
+
+}  // namespace
+
+std::string relightVolume(AdaptiveVolume& volume, const Basis& basis, const SkyRadiance& sky, const std::string& description,
+                   const std::string& name) {
+  Volume& first = volume.levels.front();
+  if (first.visibilityPerProbe == 0 && !first.distanceMap.skyVisibility)
+    throw InputError(fmt::format("{}: holds no sky visibility, which relighting reads (an engine's export keeps none: "
+                                 "relight the .vdb or EXR slices baker wrote, then export)", name));
+  if (!first.sky)
+    throw InputError(fmt::format("{}: records no sky (baker.sky), so the sky it was baked under cannot be taken away; "
+                                 "bake it again with this version to relight it", name));
+  if (setting(first, "non_negative", "false") == "true")
+    throw InputError(fmt::format("{}: was fitted with non-negative coefficients (baker.setting.non_negative), which a "
+                                 "relit volume would not keep; bake it with non_negative off to relight it", name));
+  // The same sky changes nothing, to the bit (adding an exact 0 would turn a stored -0 into +0).
+  if (first.sky->rgb == sky.rgb) {
+    if (!first.settings.count("baked_sky")) first.settings["baked_sky"] = setting(first, "sky", "none");
+    first.settings["sky"] = description;
+    return "unchanged: the new sky is the one the volume holds";
+  }
+  const StoredSignal signal = storedSignalOf(first.settings);
+  // Every level reads V the same way: adaptive levels hold no maps.
+  const SkyTransfer transfer(basis, signal, BandWindow{countSetting(first, "window", name)},
+                             volume.levels.size() == 1 ? first.distanceMap : DistanceMapLayout{0, 0.0});
+  const std::vector<Eigen::MatrixXd> operators = transfer.operators(*first.sky, sky);
+  for (Volume& level : volume.levels) relightLevel(level, transfer, operators, basis, name);
+  if (!first.settings.count("baked_sky")) first.settings["baked_sky"] = setting(first, "sky", "none");
+  first.settings["sky"] = description;
+  first.sky = sky;
+  return transfer.visibilitySource();
+}
+
+RelightReport relightVolumeFile(const RelightRequest& request) {
+  if (request.sky.environmentMap.empty() && request.sky.sky.empty())
+    throw SettingError("env", "is needed: relighting takes a new sky, an environment map or a constant sky");
+  const auto start = std::chrono::steady_clock::now();
+  RelightReport report;
+  const Environment environment = environmentFromOptions(request.sky, report.warnings);
+  AdaptiveVolume volume = readLevels(request.volumePath);
+  const std::unique_ptr<Basis> basis = basisOf(volume.coarsest());
+  requireLevelsWritable(request.output, int(volume.levels.size()));
+  const Volume& first = volume.coarsest();
+  report.basis = basis->name();
+  report.signal = storedSignalName(storedSignalOf(first.settings));
+  report.levels = int(volume.levels.size());
+  for (const Volume& level : volume.levels) report.probes += level.rows.count(level.grid);
+  report.fromSky = setting(first, "sky", "none");
+  report.bounces = countSetting(first, "bounces", request.volumePath);
+  report.otherLights = simulated(first, "punctual_lights") || simulated(first, "direct_punctual") ||
+                       simulated(first, "emission") || simulated(first, "emissive_lights");
+  const SkyRadiance newSky = recordSky(environment);
+  for (const auto& [which, sky] : {std::pair{report.fromSky, first.sky}, std::pair{skyDescription(environment), std::optional(newSky)}})
+    if (sky && concentratedShare(*sky) > kConcentratedShare)
+      report.warnings.push_back(fmt::format("{} holds {:.0f} % of its light in {} sr: relit through each probe's "
+                                            "blurred visibility, its shadows' edges are far from a rebake's "
+                                            "(docs/RELIGHTING.md)",
+                                            which, 100.0 * concentratedShare(*sky), kConcentratedSolidAngle));
+  report.visibility = relightVolume(volume, *basis, newSky, skyDescription(environment), request.volumePath);
+  report.toSky = volume.coarsest().settings.at("sky");
+  report.bakedSky = volume.coarsest().settings.at("baked_sky");
+  report.changes.push_back("the sky each probe sees directly, through its stored visibility: " + report.visibility);
+  if (report.bounces > 0 && simulated(first, "bounces"))
+    report.keeps.push_back("light the sky sends through bounces off surfaces: as baked under " + report.bakedSky);
+  if (report.otherLights)
+    report.keeps.push_back("light from lamps and emissive surfaces, direct and bounced");
+  report.engineExport = writeLevels(volume, *basis, request.output);
+  report.seconds = secondsSince(start);
+  return report;
+}
+
+}  // namespace baker

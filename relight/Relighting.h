@@ -1,0 +1,51 @@
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "basis/Basis.h"
+#include "formats/EngineExport.h"
+#include "formats/VolumeWriter.h"
+#include "scene/SceneOptions.h"
+#include "volume/AdaptiveVolume.h"
+#include "volume/SkyRadiance.h"
+
+namespace baker {
+
+// `baker relight`: a baked volume under another sky, without tracing a ray.
+struct RelightRequest {
+  std::string volumePath;
+  // The new sky: environmentMap (with its intensity and rotation) or a constant `sky`; the glTF
+  // scene index is not read. A constant sky of 0,0,0 leaves the light that is not the sky's.
+  SceneOptions sky;
+  VolumeOutput output;
+};
+
+struct RelightReport {
+  std::string basis, signal;
+  int levels = 1;
+  std::int64_t probes = 0;      // held, over every level
+  std::string fromSky, toSky;   // the settings "sky" before and after
+  std::string bakedSky;         // the sky the bake traced (setting "baked_sky" once relit)
+  int bounces = 0;              // of the bake
+  bool otherLights = false;     // whether the bake had lights besides the sky (lamps, emission)
+  std::string visibility;       // how V(ω) was read (SkyTransfer::visibilitySource)
+  std::vector<std::string> changes, keeps;  // in words, what the relit volume changes and keeps
+  std::vector<std::string> warnings;        // e.g. texels of the new map that were not finite
+  EngineExport engineExport;
+  double seconds = 0.0;
+};
+
+// Adds to every probe of `volume` (each level) what the change from its recorded sky to `sky`
+// does through its visibility (volume/SkyTransfer.h), and records `sky` (setting "sky":
+// `description`; "baked_sky" keeps the sky the bake traced). Returns how the visibility was read.
+// InputError when the volume holds no visibility or records no sky; NumericalError if a value
+// would leave single precision.
+std::string relightVolume(AdaptiveVolume& volume, const Basis& basis, const SkyRadiance& sky, const std::string& description,
+                   const std::string& name);
+
+// Reads the volume, relights it to the request's sky and writes it to the output (atomically:
+// nothing is written on an error). SettingError "env" when the request names no sky.
+RelightReport relightVolumeFile(const RelightRequest& request);
+
+}  // namespace baker
