@@ -22,12 +22,16 @@ namespace {
 constexpr int kRotations = 8;
 int rotationOf(int i, int j, int k) { return (i & 1) + 2 * (j & 1) + 4 * (k & 1); }
 
+// A brick's values as the probe baker writes them, task after task; kept from brick to brick.
+struct BrickScratch {
+  std::vector<float> coefficients, skyDirect, visibility, distances;
+};
+
 // The probes of brick `brick`: placed (moved out of geometry, or marked invalid) and traced,
-// their coefficients, sky visibility and distance moments written into `volume`.
+// their coefficients, directly seen sky, sky visibility and distance moments written into `volume`.
 void bakeBrick(const RayTracer& tracer, const BakeSettings& settings, const ProbeBaker& probeBaker,
                const std::vector<Eigen::Vector3f>& testDirections, std::int64_t brick, std::uint64_t firstId,
-               Volume& volume, RayCounts& counts, RoundTally& tally, std::vector<float>& coefficients,
-               std::vector<float>& visibility, std::vector<float>& distances) {
+               Volume& volume, RayCounts& counts, RoundTally& tally, BrickScratch& scratch) {
   const ProbeGrid& grid = volume.grid;
   std::vector<ProbeTask> candidates;
   std::vector<std::int64_t> rows;  // each candidate's row in the volume's arrays
@@ -61,18 +65,16 @@ void bakeBrick(const RayTracer& tracer, const BakeSettings& settings, const Prob
       tasks.push_back(candidates[c]);
       taskRows.push_back(rows[c]);
     }
-  coefficients.resize(tasks.size() * volume.coefficientsPerProbe);
-  visibility.resize(tasks.size() * volume.visibilityPerProbe);
-  const std::size_t perProbe = std::size_t(volume.distanceMomentsPerProbe());
-  distances.resize(tasks.size() * perProbe);
-  probeBaker.bake(tasks, coefficients.data(), visibility.data(), &counts, nullptr, &tally,
-                  {volume.distanceMap, perProbe > 0 ? distances.data() : nullptr});
-  for (std::size_t t = 0; t < tasks.size(); ++t) {
-    std::copy_n(distances.data() + t * perProbe, perProbe, volume.distanceMoments.data() + taskRows[t] * perProbe);
-    std::copy_n(coefficients.data() + t * volume.coefficientsPerProbe, volume.coefficientsPerProbe,
-                volume.coefficients.data() + taskRows[t] * volume.coefficientsPerProbe);
-    std::copy_n(visibility.data() + t * volume.visibilityPerProbe, volume.visibilityPerProbe,
-                volume.visibility.data() + taskRows[t] * volume.visibilityPerProbe);
+  auto arrays = volume.floatRows();
+  std::vector<float>* buffers[] = {&scratch.coefficients, &scratch.skyDirect, &scratch.visibility, &scratch.distances};
+  for (std::size_t a = 0; a < arrays.size(); ++a) buffers[a]->resize(tasks.size() * std::size_t(arrays[a].width));
+  probeBaker.bake(tasks, scratch.coefficients.data(), scratch.visibility.data(), &counts, nullptr, &tally,
+                  {volume.distanceMap, volume.distanceMomentsPerProbe() > 0 ? scratch.distances.data() : nullptr},
+                  volume.keepsSkyDirect ? scratch.skyDirect.data() : nullptr);
+  for (std::size_t a = 0; a < arrays.size(); ++a) {
+    const std::size_t width = std::size_t(arrays[a].width);
+    for (std::size_t t = 0; t < tasks.size(); ++t)
+      std::copy_n(buffers[a]->data() + t * width, width, arrays[a].values->data() + taskRows[t] * width);
   }
 }
 
@@ -83,6 +85,11 @@ void requireFiniteBake(const Volume& volume) {
     if (!std::isfinite(volume.coefficients[i]))
       throw NumericalError(fmt::format("probe {} of the bake has a non-finite coefficient (the scene's radiance "
                                        "overflows float); nothing was written",
+                                       volume.rows.probeAt(volume.grid, std::int64_t(i) / volume.coefficientsPerProbe)));
+  for (std::size_t i = 0; i < volume.skyDirect.size(); ++i)
+    if (!std::isfinite(volume.skyDirect[i]))
+      throw NumericalError(fmt::format("probe {} of the bake has a non-finite coefficient of its directly seen sky "
+                                       "(the sky's radiance overflows float); nothing was written",
                                        volume.rows.probeAt(volume.grid, std::int64_t(i) / volume.coefficientsPerProbe)));
   for (std::size_t i = 0; i < volume.visibility.size(); ++i)
     if (!std::isfinite(volume.visibility[i]))
@@ -120,8 +127,10 @@ Volume BrickBaker::emptyVolume(const ProbeGrid& grid, const ProbeRows& rows) con
   volume.basisName = basis_.name();
   volume.coefficientsPerProbe = probeBaker_->coefficientsPerProbe();
   volume.visibilityPerProbe = probeBaker_->visibilityPerProbe();
+  volume.keepsSkyDirect = probeBaker_->keepsSkyDirect();
   const std::size_t probes = std::size_t(volume.rows.count(grid));
   volume.coefficients.assign(probes * volume.coefficientsPerProbe, 0.0f);
+  volume.skyDirect.assign(probes * std::size_t(volume.skyDirectPerProbe()), 0.0f);
   volume.visibility.assign(probes * volume.visibilityPerProbe, 0.0f);
   volume.states.assign(probes, ProbeState::Invalid);
   volume.offsets.assign(probes, Eigen::Vector3f::Zero());
@@ -140,10 +149,10 @@ void BrickBaker::bake(Volume& volume, const std::vector<std::int64_t>& bricks, s
   std::vector<RayCounts> brickRays(brickCount);
   std::vector<RoundTally> brickTallies(brickCount);
   tbb::parallel_for(tbb::blocked_range<int>(0, brickCount, 1), [&](const tbb::blocked_range<int>& range) {
-    std::vector<float> coefficients, visibility, distances;
+    BrickScratch scratch;
     for (int n = range.begin(); n < range.end(); ++n) {
       bakeBrick(tracer_, settings_, *probeBaker_, testDirections_, bricks[n], firstId, volume, brickRays[n],
-                brickTallies[n], coefficients, visibility, distances);
+                brickTallies[n], scratch);
       if (brickDone) brickDone();
     }
   });
@@ -192,6 +201,7 @@ Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basi
   if (!shard) {
     fillInvalidProbes(grid, volume.states, volume.coefficientsPerProbe, volume.coefficients);
     fillInvalidProbes(grid, volume.states, volume.visibilityPerProbe, volume.visibility);
+    fillInvalidProbes(grid, volume.states, volume.skyDirectPerProbe(), volume.skyDirect);
   }
   requireFiniteBake(volume);
   baker.finishStats({&volume}, stats);

@@ -126,6 +126,13 @@ void DirectView::sample(const ProbeView& view, std::uint64_t probeId, std::vecto
   if (!view.aimed.empty()) sampleSpots(view, probeId, arrivals, counts);
 }
 
+std::vector<DirectView::Arrival> DirectView::fromSky(const std::vector<Arrival>& arrivals) {
+  std::vector<Arrival> sky;
+  for (const Arrival& a : arrivals)
+    if (std::isinf(a.distance)) sky.push_back(a);
+  return sky;
+}
+
 void DirectView::sampleSky(const ProbeView& view, std::uint64_t probeId, std::vector<Arrival>* arrivals,
                            RayCounts* counts) const {
   thread_local Pending pending;

@@ -76,6 +76,8 @@ class DirectView {
   // each kind's sequence depend only on (seed, probeId).
   void sample(const ProbeView& view, std::uint64_t probeId, std::vector<Arrival>* arrivals,
               RayCounts* counts) const;
+  // The arrivals of `arrivals` that are samples of the sky: theirs alone have no distance (+∞).
+  static std::vector<Arrival> fromSky(const std::vector<Arrival>& arrivals);
 
  private:
   // Samples per steradian with which spot samples aim at `light` along `direction`.

@@ -12,6 +12,7 @@
 #include <mutex>
 #include <numeric>
 #include <optional>
+#include <stdexcept>
 
 #include "bake/PathRandom.h"
 #include "bake/ScratchBuffer.h"
@@ -147,7 +148,8 @@ ProbeBaker::ProbeBaker(const Scene& scene, const RayTracer& tracer, const Basis&
       punctual_(scene, tracer, punctualShOrder(basis)),
       directView_(scene, tracer, settings.transport, integrator_.emitters(), integrator_.lightAim()),
       coefficientsPerProbe_(basis.totalCoefficients()),
-      visibilityPerProbe_(basis.functions(0).count()) {
+      visibilityPerProbe_(basis.functions(0).count()),
+      keepsSkyDirect_(settings.transport.environment && scene.environment.emits() && !settings.projection.nonNegative) {
   const DirectionSet fibonacci = sphericalFibonacci(settings.rays);
   weights_ = fibonacci.weights;
   for (int round = 0; round < settings.convergence.maxRounds; ++round)
@@ -206,7 +208,7 @@ void ProbeBaker::buildIrradianceOperators(const std::vector<DirectionSet>& sets)
 // would carry their quadrature's error, 0.5 % for ad-srbf at 256 rays). They are handed on as
 // the moments G·c, which projectLatticeExpansion's G⁻¹ turns back into c.
 void ProbeBaker::fitRoundsByLeastSquares(const Eigen::MatrixXd& sampledGram, Eigen::MatrixXd& latticeExpansion,
-                                         int taskIndex, int batchSize) const {
+                                         int taskIndex, int batchSize, bool keepSky) const {
   for (std::size_t g = 0; g < groups_.size(); ++g) {
     const ChannelGroup& group = groups_[g];
     const int offset = ownFunctions_.offset(int(g)), n = group.functions;
@@ -216,6 +218,8 @@ void ProbeBaker::fitRoundsByLeastSquares(const Eigen::MatrixXd& sampledGram, Eig
     std::vector<int> columns;
     for (int c = 0; c < group.channelCount; ++c) columns.push_back(group.firstChannel + c);
     if (g == 0) columns.push_back(3);  // sky visibility, in channel 0's functions
+    if (keepSky)  // the directly seen sky's channels
+      for (int c = 0; c < group.channelCount; ++c) columns.push_back(4 + group.firstChannel + c);
     for (int c : columns) {
       auto moments = latticeExpansion.block(offset, c * batchSize + taskIndex, n, 1);
       moments = group.gram * fit.solve(Eigen::VectorXd(moments));
@@ -255,7 +259,7 @@ ProbeBaker::~ProbeBaker() = default;
 
 ProbeBaker::Rounds ProbeBaker::traceRounds(const ProbeTask& task, const std::vector<PunctualAtProbe::Arrival>& lights,
                                            std::vector<PunctualAtProbe::Arrival>* direct, Eigen::MatrixXd& latticeExpansion,
-                                           int taskIndex, int batchSize, RayCounts* counts,
+                                           int taskIndex, int batchSize, bool keepSky, RayCounts* counts,
                                            ProbeSamples* samples, DistanceMomentsAccumulator* distances) const {
   const ConvergenceSettings& convergence = settings_.convergence;
   const ColorSpace space = basis_.colorSpace();
@@ -310,6 +314,10 @@ ProbeBaker::Rounds ProbeBaker::traceRounds(const ProbeTask& task, const std::vec
           for (int c = 0; c < 3; ++c) latticeExpansion(i, c * batchSize + taskIndex) += value[c] * y[i];
           latticeExpansion(i, 3 * batchSize + taskIndex) += seen * y[i];
         }
+        // An escaped ray brought back the sky alone (PathIntegrator): its value is the sky's.
+        if (keepSky && sky[r] > 0.0f)
+          for (int i = 0; i < count; ++i)
+            for (int c = 0; c < 3; ++c) latticeExpansion(i, (4 + c) * batchSize + taskIndex) += value[c] * y[i];
         if (fitsRadiance)
           sampledGram.selfadjointView<Eigen::Lower>().rankUpdate(Eigen::Map<const Eigen::VectorXd>(y.data(), count),
                                                                  weight);
@@ -324,8 +332,8 @@ ProbeBaker::Rounds ProbeBaker::traceRounds(const ProbeTask& task, const std::vec
     statistics.add(rays, estimates[0], estimates[1]);
   }
   const std::int64_t traced = raysAfterRounds(settings_.rays, statistics.rounds());
-  for (int c = 0; c < 4; ++c) latticeExpansion.col(c * batchSize + taskIndex) /= double(traced);
-  if (fitsRadiance) fitRoundsByLeastSquares(sampledGram / double(traced), latticeExpansion, taskIndex, batchSize);
+  for (int c = 0; c < (keepSky ? 7 : 4); ++c) latticeExpansion.col(c * batchSize + taskIndex) /= double(traced);
+  if (fitsRadiance) fitRoundsByLeastSquares(sampledGram / double(traced), latticeExpansion, taskIndex, batchSize, keepSky);
   for (PunctualAtProbe::Arrival& a : *direct) a.irradiance /= float(traced);
   if (samples)
     for (double& w : samples->weights) w /= double(traced);
@@ -343,6 +351,7 @@ struct ProbeBaker::ArrivalExpansion {
 
   void add(const std::vector<PunctualAtProbe::Arrival>& arrivals, int taskIndex, ColorSpace space) {
     if (arrivals.empty()) return;
+    if (values.cols() == 0) throw std::logic_error("ProbeBaker: arrivals for an expansion sized for none");
     any = true;
     const int count = functions->count();
     const int probes = int(values.cols()) / 3;
@@ -358,7 +367,8 @@ struct ProbeBaker::ArrivalExpansion {
 };
 
 // Probes in order of rotation, so that each rotation's columns are one block: per rotation,
-// channel 0 of its probes, then channel 1, channel 2, visibility. (A fixed lattice only.)
+// channel 0 of its probes, then channel 1, channel 2, visibility, and when the directly seen sky
+// is kept apart its channels 0, 1, 2 (`width` columns per probe). (A fixed lattice only.)
 struct ProbeBaker::RotationBlocks {
   struct Block {
     int rotation, first, count;
@@ -366,8 +376,10 @@ struct ProbeBaker::RotationBlocks {
   std::vector<int> order;    // task indices in rotation order
   std::vector<Block> blocks;
   std::vector<int> blockOf;  // of each probe in rotation order
+  int width;
 
-  explicit RotationBlocks(const std::vector<ProbeTask>& tasks) : order(tasks.size()), blockOf(tasks.size()) {
+  RotationBlocks(const std::vector<ProbeTask>& tasks, bool keepSky)
+      : order(tasks.size()), blockOf(tasks.size()), width(keepSky ? 7 : 4) {
     std::iota(order.begin(), order.end(), 0);
     std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return tasks[a].rotation < tasks[b].rotation; });
     for (std::size_t s = 0; s < tasks.size(); ++s) {
@@ -396,11 +408,15 @@ void ProbeBaker::traceLattice(const ProbeTask& task, const RotationBlocks& rotat
   integrator_.trace(task.position, task.id, dirs.data(), rays, radiance.data(), sky.data(), counts, &view,
                     distances ? hitDistance.data() : nullptr);
   if (distances) distances->add(dirs.data(), hitDistance.data(), rays);
-  const int base = 4 * block.first;
+  const int base = rotations.width * block.first;
+  const bool keepSky = rotations.width == 7;
   for (int r = 0; r < rays; ++r) {
     const Eigen::Vector3f value = toColorSpace(basis_.colorSpace(), radiance[r]);
     for (int c = 0; c < 3; ++c) columns(r, base + c * block.count + within) = value[c];
     columns(r, base + 3 * block.count + within) = sky[r];
+    // An escaped ray brought back the sky alone (PathIntegrator): its value is the sky's.
+    if (keepSky)
+      for (int c = 0; c < 3; ++c) columns(r, base + (4 + c) * block.count + within) = sky[r] > 0.0f ? value[c] : 0.0f;
   }
   if (!directView_.empty()) directView_.sample(view, task.id, direct, counts);
   if (samples) {
@@ -412,7 +428,7 @@ void ProbeBaker::traceLattice(const ProbeTask& task, const RotationBlocks& rotat
 }
 
 void ProbeBaker::projectLattice(const SampleColumns& columns, const RotationBlocks& rotations, float* coefficients,
-                                float* visibility) const {
+                                float* visibility, float* skyDirect) const {
   // Each coefficient is a dot product of an operator row with a probe's samples, written
   // straight to the output: the brick's operator-times-samples product, coefficient by
   // coefficient. Eigen's general product cost two and a half times as much here, most of it
@@ -422,15 +438,18 @@ void ProbeBaker::projectLattice(const SampleColumns& columns, const RotationBloc
     for (int f = 0; f < functions; ++f) out[f] = fromSamples.row(f).dot(samples) * scale;
   };
   for (const RotationBlocks::Block& block : rotations.blocks) {
-    const int base = 4 * block.first;
+    const int base = rotations.width * block.first;
     for (const ChannelGroup& group : groups_) {
       const auto& fromSamples = group.fromSamples[block.rotation];
       for (int c = 0; c < group.channelCount; ++c) {
         const int channel = group.firstChannel + c;
         const int offset = basis_.coefficientOffset(channel);
-        for (int within = 0; within < block.count; ++within)
-          project(fromSamples, base + channel * block.count + within, group.functions, 1.0f,
-                  coefficients + std::size_t(rotations.order[block.first + within]) * coefficientsPerProbe_ + offset);
+        for (int within = 0; within < block.count; ++within) {
+          const std::size_t out = std::size_t(rotations.order[block.first + within]) * coefficientsPerProbe_ + offset;
+          project(fromSamples, base + channel * block.count + within, group.functions, 1.0f, coefficients + out);
+          if (skyDirect)
+            project(fromSamples, base + (4 + channel) * block.count + within, group.functions, 1.0f, skyDirect + out);
+        }
       }
     }
     for (int within = 0; within < block.count; ++within)
@@ -440,8 +459,9 @@ void ProbeBaker::projectLattice(const SampleColumns& columns, const RotationBloc
   }
 }
 
-void ProbeBaker::projectExpansion(const Eigen::MatrixXd ChannelGroup::*fromExpansion, const Eigen::MatrixXd& expansion,
-                                  int p, float* coefficients, bool accumulate) const {
+void ProbeBaker::projectExpansion(const Eigen::MatrixXd ChannelGroup::*fromExpansion,
+                                  const Eigen::Ref<const Eigen::MatrixXd>& expansion, int p, float* coefficients,
+                                  bool accumulate) const {
   for (const ChannelGroup& group : groups_) {
     const Eigen::MatrixXd result =
         group.*fromExpansion * expansion.middleCols(group.firstChannel * p, group.channelCount * p);
@@ -460,11 +480,16 @@ void ProbeBaker::projectExpansion(const Eigen::MatrixXd ChannelGroup::*fromExpan
   }
 }
 
-void ProbeBaker::projectLatticeExpansion(Eigen::MatrixXd& latticeExpansion, int p, float* coefficients, float* visibility) const {
+void ProbeBaker::projectLatticeExpansion(Eigen::MatrixXd& latticeExpansion, int p, float* coefficients, float* visibility,
+                                         float* skyDirect) const {
   // The lattices' means → coefficients, through the operator the direct-view samples take.
   std::fill_n(coefficients, std::size_t(p) * coefficientsPerProbe_, 0.0f);
   latticeExpansion.middleCols(3 * p, p) *= visibilityScale();
   projectExpansion(&ChannelGroup::fromDirect, latticeExpansion, p, coefficients, false);
+  if (skyDirect) {
+    std::fill_n(skyDirect, std::size_t(p) * coefficientsPerProbe_, 0.0f);
+    projectExpansion(&ChannelGroup::fromDirect, latticeExpansion.middleCols(4 * p, 3 * p), p, skyDirect, false);
+  }
   const Eigen::MatrixXd seen = groups_[0].fromDirect * latticeExpansion.middleCols(3 * p, p);
   for (int q = 0; q < p; ++q)
     for (int f = 0; f < visibilityPerProbe_; ++f) visibility[std::size_t(q) * visibilityPerProbe_ + f] = float(seen(f, q));
@@ -491,23 +516,27 @@ void ProbeBaker::constrainNonNegative(int p, float* coefficients, float* visibil
 
 void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, float* visibility, RayCounts* counts,
                       std::vector<ProbeSamples>* samples, RoundTally* tally,
-                      const DistanceMomentsOutput& distances) const {
+                      const DistanceMomentsOutput& distances, float* skyDirect) const {
   const int p = int(tasks.size());
   const bool adaptive = settings_.convergence.adaptive();
+  if (skyDirect && !keepsSkyDirect_) throw std::logic_error("ProbeBaker::bake: this bake keeps no directly seen sky");
+  const bool keepSky = skyDirect != nullptr;
   if (samples) samples->assign(p, {});
-  const RotationBlocks rotations(tasks);
+  const RotationBlocks rotations(tasks, keepSky);
   // Kept from brick to brick on each thread: a brick's samples are megabytes.
   thread_local ScratchBuffer<float> sampleStore;
   const int columnRays = adaptive ? 0 : settings_.rays;
-  SampleColumns columns(sampleStore.reserve(std::size_t(columnRays) * 4 * std::size_t(p)), columnRays, 4 * p);
+  SampleColumns columns(sampleStore.reserve(std::size_t(columnRays) * rotations.width * std::size_t(p)), columnRays,
+                        rotations.width * p);
   const bool punctualAtProbe = settings_.transport.directPunctual && !punctual_.empty();
   ArrivalExpansion punctualArrivals(*punctualExpansion_, punctualAtProbe ? p : 0);
   ArrivalExpansion directArrivals(*directExpansion_, directView_.empty() ? 0 : p);
+  ArrivalExpansion skyArrivals(*directExpansion_, keepSky && directView_.samplesSky() ? p : 0);
   // Adaptive convergence: the lattices' expansion per probe (SH, or for radiance the basis's
-  // moments), of the three channels and of sky visibility (count × 4p, channel-major like
-  // directArrivals).
+  // moments), of the three channels, of sky visibility and of the directly seen sky's channels
+  // (count × 4p or 7p, channel-major like directArrivals).
   Eigen::MatrixXd latticeExpansion;
-  if (adaptive) latticeExpansion.setZero(directExpansion_->count(), 4 * p);
+  if (adaptive) latticeExpansion.setZero(directExpansion_->count(), rotations.width * p);
 
   // A probe's samples depend on nothing but the probe, so they are traced a few probes per task:
   // a volume of a few bricks keeps every thread busy to the end, where whole bricks would leave
@@ -529,8 +558,8 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
         DistanceMomentsAccumulator* probeMoments = moments ? &*moments : nullptr;
         if (probeMoments) probeMoments->reset();
         if (adaptive) {
-          const Rounds rounds = traceRounds(task, lights, &direct, latticeExpansion, taskIndex, p, &rangeCounts,
-                                            probeSamples, probeMoments);
+          const Rounds rounds = traceRounds(task, lights, &direct, latticeExpansion, taskIndex, p, keepSky,
+                                            &rangeCounts, probeSamples, probeMoments);
           rangeTally.add(rounds.rays, !rounds.converged);
         } else {
           traceLattice(task, rotations, s, columns, &direct, &rangeCounts, probeSamples, probeMoments);
@@ -540,6 +569,7 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
           probeMoments->write(distances.values + std::size_t(taskIndex) * distances.layout.valuesPerProbe());
         punctualArrivals.add(lights, taskIndex, basis_.colorSpace());
         directArrivals.add(direct, taskIndex, basis_.colorSpace());
+        if (keepSky) skyArrivals.add(DirectView::fromSky(direct), taskIndex, basis_.colorSpace());
         if (probeSamples) {
           probeSamples->punctual = std::move(lights);
           probeSamples->direct = std::move(direct);
@@ -553,11 +583,12 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
 
   const auto projectionStart = std::chrono::steady_clock::now();
   if (adaptive)
-    projectLatticeExpansion(latticeExpansion, p, coefficients, visibility);
+    projectLatticeExpansion(latticeExpansion, p, coefficients, visibility, skyDirect);
   else
-    projectLattice(columns, rotations, coefficients, visibility);
+    projectLattice(columns, rotations, coefficients, visibility, skyDirect);
   if (punctualArrivals.any) projectExpansion(&ChannelGroup::fromPunctual, punctualArrivals.values, p, coefficients, true);
   if (directArrivals.any) projectExpansion(&ChannelGroup::fromDirect, directArrivals.values, p, coefficients, true);
+  if (skyArrivals.any) projectExpansion(&ChannelGroup::fromDirect, skyArrivals.values, p, skyDirect, true);
   if (settings_.projection.nonNegative) constrainNonNegative(p, coefficients, visibility);
   projectionNanoseconds_ += std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() -
                                                                                  projectionStart)

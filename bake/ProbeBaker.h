@@ -129,6 +129,9 @@ class ProbeBaker {
   // Sky visibility is stored like channel 0's signal: for irradiance divided by π,
   // V(n) = (1/π) ∫ V max(0, n·ω) dω; for radiance V(ω) itself.
   int visibilityPerProbe() const { return visibilityPerProbe_; }
+  // Whether bake() can keep each probe's directly seen sky apart (its `skyDirect`): when the sky
+  // lights the bake, and the coefficients are linear in the samples (not the non-negative fit).
+  bool keepsSkyDirect() const { return keepsSkyDirect_; }
   int rotations() const { return int(directions_.size()); }
   const std::vector<Eigen::Vector3f>& directions(int rotation) const { return directions_[rotation]; }
   int shOrder() const { return shOrder_; }
@@ -140,10 +143,13 @@ class ProbeBaker {
   // coefficients: tasks.size() × coefficientsPerProbe(); visibility: × visibilityPerProbe().
   // `samples`, when given, receives each task's samples; `tally` hears how many lattice
   // directions the probes took; `distances`, when it has values, each probe's distance moments
-  // from its lattice rays (no ray is traced for them).
+  // from its lattice rays (no ray is traced for them); `skyDirect`, when given (keepsSkyDirect()),
+  // receives tasks.size() × coefficientsPerProbe(): the coefficients of the sky alone as the
+  // probe saw it directly, the lattice's escaped rays and the direct view's sky samples, by the
+  // same projection, so that coefficients − skyDirect is the rest of the light.
   void bake(const std::vector<ProbeTask>& tasks, float* coefficients, float* visibility, RayCounts* counts,
             std::vector<ProbeSamples>* samples = nullptr, RoundTally* tally = nullptr,
-            const DistanceMomentsOutput& distances = {}) const;
+            const DistanceMomentsOutput& distances = {}, float* skyDirect = nullptr) const;
 
  private:
   struct ChannelGroup;
@@ -161,24 +167,27 @@ class ProbeBaker {
   // One probe's rounds, until it converges: its lattices' radiance is summed as SH into
   // `latticeExpansion` (column c·batchSize + taskIndex for channel c, 3 for sky visibility), its
   // direct-view samples into `direct`, both as means over all its rays; and into `samples`
-  // when given.
+  // when given. With `keepSky`, columns (4 + c)·batchSize + taskIndex sum channel c of the rays
+  // that escaped.
   Rounds traceRounds(const ProbeTask& task, const std::vector<PunctualAtProbe::Arrival>& lights,
                      std::vector<PunctualAtProbe::Arrival>* direct, Eigen::MatrixXd& latticeExpansion, int taskIndex,
-                     int batchSize, RayCounts* counts, ProbeSamples* samples,
+                     int batchSize, bool keepSky, RayCounts* counts, ProbeSamples* samples,
                      DistanceMomentsAccumulator* distances) const;
   void fitRoundsByLeastSquares(const Eigen::MatrixXd& sampledGram, Eigen::MatrixXd& latticeExpansion, int taskIndex,
-                               int batchSize) const;
+                               int batchSize, bool keepSky) const;
   // The probe's fixed lattice, traced into its columns, with its direct-view samples.
   void traceLattice(const ProbeTask& task, const RotationBlocks& rotations, int s, SampleColumns& columns,
                     std::vector<PunctualAtProbe::Arrival>* direct, RayCounts* counts, ProbeSamples* samples,
                     DistanceMomentsAccumulator* distances) const;
   void projectLattice(const SampleColumns& columns, const RotationBlocks& rotations, float* coefficients,
-                      float* visibility) const;
-  void projectLatticeExpansion(Eigen::MatrixXd& latticeExpansion, int p, float* coefficients, float* visibility) const;
+                      float* visibility, float* skyDirect) const;
+  void projectLatticeExpansion(Eigen::MatrixXd& latticeExpansion, int p, float* coefficients, float* visibility,
+                               float* skyDirect) const;
   // Coefficients of arrivals expanded in an expansion's functions (count × 3p) through each
   // group's operator `fromExpansion`, added to or written over `coefficients`.
-  void projectExpansion(const Eigen::MatrixXd ChannelGroup::*fromExpansion, const Eigen::MatrixXd& expansion, int p,
-                        float* coefficients, bool accumulate) const;
+  void projectExpansion(const Eigen::MatrixXd ChannelGroup::*fromExpansion,
+                        const Eigen::Ref<const Eigen::MatrixXd>& expansion, int p, float* coefficients,
+                        bool accumulate) const;
   void constrainNonNegative(int p, float* coefficients, float* visibility) const;
   // Sky visibility's factor after the projection: 1/π turns irradiance of V into its cosine-weighted mean.
   double visibilityScale() const {
@@ -203,6 +212,7 @@ class ProbeBaker {
   std::vector<ChannelGroup> groups_;
   int coefficientsPerProbe_ = 0;
   int visibilityPerProbe_ = 0;
+  bool keepsSkyDirect_ = false;
   int shOrder_ = 0;
   double condition_ = 0.0;
   mutable std::atomic<std::int64_t> projectionNanoseconds_{0};

@@ -46,6 +46,7 @@ int runRelightCommand(int argc, char** argv) {
                                   {"bounces", r.bounces},
                                   {"other_lights", r.otherLights},
                                   {"visibility", r.visibility},
+                                  {"old_sky_removed", r.oldSkyRemoved},
                                   {"changes", r.changes},
                                   {"keeps", r.keeps},
                                   {"seconds", r.seconds}}

@@ -6,11 +6,13 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "cli/CommandLine.h"
 #include "common/Error.h"
 #include "formats/AtomicFile.h"
 #include "formats/VolumeReader.h"
+#include "relight/Relighting.h"
 #include "validate/IrradianceError.h"
 #include "validate/ReferenceComparison.h"
 #include "validate/ReferencePanoramas.h"
@@ -59,6 +61,9 @@ int runValidateCommand(int argc, char** argv) {
       "same index is used, otherwise the new volume sampled trilinearly at the reference probe's position (reference "
       "probes outside the new volume's cells are skipped). Validity (probe_state) must not change; metadata "
       "differences are reported only.\n"
+      "--run-time-env / --run-time-sky: NEW is read as decoders relight it at run time under that sky (its light less "
+      "its sky_direct grids, plus the sky's irradiance from its SH to band 2 times NEW's sky visibility V(n)), to "
+      "measure that against a rebake under the sky (docs/RELIGHTING.md).\n"
       "--against-reference DIR: DIR is what reference_probe.py writes (probes.json, probe_NNNN.exr); E(n) is the exact "
       "sum over the panorama's pixels. The panoramas contain no punctual light seen directly: bake with "
       "--no direct-punctual for this.\n"
@@ -71,6 +76,10 @@ int runValidateCommand(int argc, char** argv) {
       ->required();
   app.add_option("new", newPath, "NEW volume to check against REFERENCE");
   app.add_option("--against-reference", referenceDirectory, "compare VOLUME with reference_probe.py's output DIR");
+  SceneOptions runTimeSky;
+  app.add_option("--run-time-env", runTimeSky.environmentMap,
+                 "read NEW relit at run time, as decoders do, under this lat-long map (.hdr/.exr)");
+  app.add_option("--run-time-sky", runTimeSky.sky, "read NEW relit at run time under a constant sky r,g,b");
   app.add_option("--tolerance", tolerance, "largest relative error that passes (default 0.02)");
   app.add_option("--report", reportPath, "write the report as JSON to this file");
   app.add_option("--junit", junitPath, "write the checks as JUnit XML to this file");
@@ -78,6 +87,12 @@ int runValidateCommand(int argc, char** argv) {
   return runGuarded("baker validate", app, argc, argv, [&]() {
     if (referenceDirectory.empty() == newPath.empty())
       throw InputError("expected REFERENCE NEW, or VOLUME --against-reference DIR");
+    const bool atRunTime = !runTimeSky.environmentMap.empty() || !runTimeSky.sky.empty();
+    if (!runTimeSky.environmentMap.empty() && !runTimeSky.sky.empty())
+      throw InputError("--run-time-env and --run-time-sky: give one sky");
+    if (atRunTime && !referenceDirectory.empty())
+      throw InputError("--run-time-env and --run-time-sky read NEW relit at run time; they do not apply to "
+                       "--against-reference");
     if (!std::isfinite(tolerance) || tolerance < 0.0)
       throw InputError(fmt::format("--tolerance {}: expected a finite number >= 0", tolerance));
     ReportFile report(reportPath), junit(junitPath);
@@ -94,11 +109,17 @@ int runValidateCommand(int argc, char** argv) {
     } else {
       const Volume reference = readVolume(referencePath);
       const Volume candidate = readVolume(newPath);
-      const VolumeComparison comparison = compareVolumes(reference, candidate, kWorstProbes);
+      std::optional<DescribedSkyHarmonics> sky;
+      std::vector<std::string> warnings;
+      if (atRunTime) sky = skyHarmonicsOf(runTimeSky, warnings);
+      for (const std::string& w : warnings) std::cerr << "baker validate: warning: " << w << "\n";
+      const VolumeComparison comparison =
+          compareVolumes(reference, candidate, kWorstProbes, {sky ? &sky->harmonics : nullptr, newPath});
       if (comparison.probesCompared == 0)
         throw InputError(fmt::format("{}: its grid {} does not overlap {}'s {}", newPath, coveredRegionText(candidate.grid),
                                      referencePath, coveredRegionText(reference.grid)));
       result = volumeValidationReport(comparison, referencePath, newPath, tolerance);
+      if (sky) result.json["run_time_sky"] = sky->description;
     }
 
     report.write(result.json.dump(2) + "\n");

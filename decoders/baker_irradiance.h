@@ -424,6 +424,23 @@ struct Specular {
 
 inline Rgb ycocgToRgb(double y, double co, double cg) { return Rgb{y + co - cg, y + cg, y - co - cg}; }
 
+// ---- Relighting at run time (docs/RELIGHTING.md) ----
+// A sky is 27 numbers: its radiance's real SH to band 2, L_lm = ∫ L(ω) Y_lm(ω) dω in world axes
+// (the SH above, index l² + l + m), R's nine, then G's, then B's. skyIrradiance is its irradiance
+// on an unoccluded surface of unit normal n, E(n) = Σ A_l L_lm Y_lm(n), A = π, 2π/3, π/4.
+inline Rgb skyIrradiance(const float* sky, const Vec3& n) {
+  static const double bands[3] = {kPi, 2.0 * kPi / 3.0, kPi / 4.0};
+  double sums[3] = {0.0, 0.0, 0.0};
+  detail::accumulateSphericalHarmonics(2, sky, 3, n, sums, bands);
+  return Rgb{sums[0], sums[1], sums[2]};
+}
+
+// E(n) = E_rest(n) + V(n)·E_sky(n): the light that is not the sky's plus the new sky seen through
+// the probe's cosine-weighted sky visibility.
+inline Rgb relitIrradiance(const Rgb& rest, double visibility, const Rgb& sky) {
+  return Rgb{rest.r + visibility * sky.r, rest.g + visibility * sky.g, rest.b + visibility * sky.b};
+}
+
 // ---------------------------------------------------------------------------------------------
 // A basis by its name in "baker.basis".
 
@@ -472,6 +489,13 @@ class BasisDecoder {
     return v;
   }
 
+  // Irradiance under a sky an engine swaps at run time: `rest` is one probe's coefficients less
+  // its sky_direct grids' (the light that is not the sky's: interpolate it like coefficients),
+  // `visibility` its visibility coefficients, `sky` the new sky (skyIrradiance).
+  Rgb relitIrradiance(const float* rest, const float* visibility, const Vec3& n, const float* sky) const {
+    return baker_decode::relitIrradiance(irradiance(rest, n), this->visibility(visibility, n), skyIrradiance(sky, n));
+  }
+
   // ---- Radiance volumes ("signal": "radiance") ----
 
   // The Legendre series of the lobes' diffuse response: "diffuse_response"."coefficients" of the
@@ -518,6 +542,13 @@ class BasisDecoder {
     double v = 0.0;
     if (!ycocg_) expandIrradianceFromRadiance(primary_, coefficients, 1, n, &v);
     return v / kPi;
+  }
+
+  // relitIrradiance for a radiance volume's coefficients; zeros unless decodesRadiance().
+  Rgb relitIrradianceFromRadiance(const float* rest, const float* visibility, const Vec3& n, const float* sky) const {
+    if (!decodesRadiance()) return Rgb{0.0, 0.0, 0.0};
+    return baker_decode::relitIrradiance(irradianceFromRadiance(rest, n), visibilityFromRadiance(visibility, n),
+                                         skyIrradiance(sky, n));
   }
 
   // Glossy specular for a GGX lobe (F0 = 1, α = roughness²) at unit normal n and unit view v

@@ -105,6 +105,20 @@ function accumulateSphericalHarmonics( order, coefficients, offset, arrays, d, s
 	}
 }
 
+// ---- Relighting at run time (docs/RELIGHTING.md) ----
+// A sky is 27 numbers: its radiance's real SH to band 2, L_lm = ∫ L(ω) Y_lm(ω) dω in world axes
+// (index l² + l + m), R's nine, then G's, then B's. Its irradiance on an unoccluded surface of unit
+// normal n: E(n) = Σ A_l L_lm Y_lm(n), A = π, 2π/3, π/4.
+export function skyIrradiance( sky, n ) {
+	const sums = [ 0, 0, 0 ];
+	accumulateSphericalHarmonics( 2, sky, 0, 3, n, sums, [ Math.PI, 2 * Math.PI / 3, Math.PI / 4 ] );
+	return sums;
+}
+
+// E(n) = E_rest(n) + V(n)·E_sky(n): the light that is not the sky's plus the new sky seen through
+// the probe's cosine-weighted sky visibility.
+function relit( rest, visibility, sky ) { return rest.map( ( e, c ) => e + visibility * sky[ c ] ); }
+
 // A_l = 2π ∫₀¹ t P_l(t) dt: how the clamped cosine scales band l (π, 2π/3, π/4, 0, −π/24, …).
 export function clampedCosineBand( l ) {
 	if ( l === 0 ) return Math.PI;
@@ -336,6 +350,13 @@ export class BasisDecoder {
 	// Sky visibility (1/π)∫V max(0, n·ω) dω from one probe's visibility values (channel 0's functions).
 	visibility( coefficients, n, offset = 0 ) { return this.primary.expand( coefficients, offset, 1, n )[ 0 ]; }
 
+	// Irradiance under a sky an engine swaps at run time: `rest` holds one probe's coefficients
+	// less its sky_direct grids' (the light that is not the sky's: interpolate it like
+	// coefficients), `visibility` its visibility values, `sky` the new sky (skyIrradiance).
+	relitIrradiance( rest, visibility, n, sky, restOffset = 0, visibilityOffset = 0 ) {
+		return relit( this.irradiance( rest, n, restOffset ), this.visibility( visibility, n, visibilityOffset ), skyIrradiance( sky, n ) );
+	}
+
 	// ---- Radiance volumes ("signal": "radiance") ----
 
 	// The lobes' response series: "diffuse_response"."coefficients" of the function set in
@@ -364,6 +385,12 @@ export class BasisDecoder {
 	visibilityFromRadiance( coefficients, n, offset = 0 ) {
 		const sums = this.ycocg ? null : this.primary.expandIrradianceFromRadiance( coefficients, offset, 1, n );
 		return sums && sums[ 0 ] / Math.PI;
+	}
+
+	// relitIrradiance for a radiance volume's coefficients; null unless decodesRadiance.
+	relitIrradianceFromRadiance( rest, visibility, n, sky, restOffset = 0, visibilityOffset = 0 ) {
+		const e = this.irradianceFromRadiance( rest, n, restOffset );
+		return e && relit( e, this.visibilityFromRadiance( visibility, n, visibilityOffset ), skyIrradiance( sky, n ) );
 	}
 
 	// GGX (F0 = 1, α = roughness²) mean radiance S = (1 − w)·L(r) + w·E(n)/π at unit normal n and

@@ -119,7 +119,8 @@ void writeLevels(const std::vector<LevelGrids>& levels, const Basis& basis, cons
   for (const LevelGrids& level : levels) requireFiniteVolume(*level.volume);
   openvdb::initialize();
   const Volume& first = *levels.front().volume;
-  const std::vector<VolumeGrid> specs = volumeGrids(basis, first.visibilityPerProbe, hasProbeStates, first.distanceMap);
+  const std::vector<VolumeGrid> specs = volumeGrids(basis, first.visibilityPerProbe, hasProbeStates, first.distanceMap,
+                                                    first.keepsSkyDirect);
   const auto gridAt = [&](std::int32_t index) {
     const LevelGrids& level = levels[std::size_t(index) / specs.size()];
     const Volume& volume = *level.volume;

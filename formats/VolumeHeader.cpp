@@ -67,6 +67,7 @@ Volume VolumeHeader::emptyVolume(const std::string& path, PartReading parts) con
   Volume volume;
   readDistanceMap(text, volume, path);
   readSky(text, volume, path);
+  readSkyDirect(text, volume);
   const double needed =
       volumeMemoryBytes(std::min(heldProbes, gridProbes), *basis, volume.distanceMomentsPerProbe()) / 2;
   if (needed > double(physicalMemoryBytes()))
@@ -104,6 +105,10 @@ void requireFiniteValues(const Volume& v, const std::string& path) {
   for (std::size_t i = 0; i < v.coefficients.size(); ++i)
     if (!std::isfinite(v.coefficients[i]))
       throw InputError(fmt::format("{}: probe {} has a non-finite coefficient", path,
+                                   v.rows.probeAt(v.grid, std::int64_t(i / v.coefficientsPerProbe))));
+  for (std::size_t i = 0; i < v.skyDirect.size(); ++i)
+    if (!std::isfinite(v.skyDirect[i]))
+      throw InputError(fmt::format("{}: probe {} has a non-finite coefficient in its sky_direct grids", path,
                                    v.rows.probeAt(v.grid, std::int64_t(i / v.coefficientsPerProbe))));
   for (std::size_t i = 0; i < v.visibility.size(); ++i)
     if (!std::isfinite(v.visibility[i]))

@@ -11,19 +11,29 @@
 
 namespace baker {
 
-std::vector<VolumeGrid> volumeGrids(const Basis& basis, int visibilityPerProbe, bool hasProbeStates,
-                                    const DistanceMapLayout& distanceMap) {
-  std::vector<VolumeGrid> grids;
+namespace {
+
+void addCoefficientGrids(const Basis& basis, VolumeGrid::Kind kind, const std::string& prefix,
+                         std::vector<VolumeGrid>& grids) {
   if (basis.channelsShareFunctions()) {
     for (int f = 0; f < basis.coefficientCount(0); ++f)
-      grids.push_back({fmt::format("rgb_{:02}", f), VolumeGrid::Kind::Coefficients, 3,
+      grids.push_back({fmt::format("{}rgb_{:02}", prefix, f), kind, 3,
                        {basis.coefficientOffset(0) + f, basis.coefficientOffset(1) + f, basis.coefficientOffset(2) + f}});
   } else {
     for (int c = 0; c < 3; ++c)
       for (int f = 0; f < basis.coefficientCount(c); ++f)
-        grids.push_back({fmt::format("{}_{:02}", channelName(basis.colorSpace(), c), f),
-                         VolumeGrid::Kind::Coefficients, 1, {basis.coefficientOffset(c) + f, 0, 0}});
+        grids.push_back({fmt::format("{}{}_{:02}", prefix, channelName(basis.colorSpace(), c), f), kind, 1,
+                         {basis.coefficientOffset(c) + f, 0, 0}});
   }
+}
+
+}  // namespace
+
+std::vector<VolumeGrid> volumeGrids(const Basis& basis, int visibilityPerProbe, bool hasProbeStates,
+                                    const DistanceMapLayout& distanceMap, bool skyDirect) {
+  std::vector<VolumeGrid> grids;
+  addCoefficientGrids(basis, VolumeGrid::Kind::Coefficients, "", grids);
+  if (skyDirect) addCoefficientGrids(basis, VolumeGrid::Kind::SkyDirect, "sky_direct_", grids);
   for (int f = 0; f < visibilityPerProbe; ++f)
     grids.push_back({fmt::format("visibility_{:02}", f), VolumeGrid::Kind::Visibility, 1, {f, 0, 0}});
   const int moments = distanceMap.size > 0 ? 2 * distanceMap.texels() : 0;
@@ -51,6 +61,7 @@ float gridValue(const Volume& v, const VolumeGrid& grid, int component, std::int
   if (row < 0) return grid.kind == VolumeGrid::Kind::ProbeState ? float(ProbeState::Invalid) : 0.0f;
   switch (grid.kind) {
     case VolumeGrid::Kind::Coefficients: return v.coefficients[row * v.coefficientsPerProbe + grid.index[component]];
+    case VolumeGrid::Kind::SkyDirect: return v.skyDirect[row * v.coefficientsPerProbe + grid.index[component]];
     case VolumeGrid::Kind::Visibility: return v.visibility[row * v.visibilityPerProbe + grid.index[component]];
     case VolumeGrid::Kind::DistanceMoments:
     case VolumeGrid::Kind::SkyVisibilityMap:
@@ -66,6 +77,7 @@ bool setGridValue(Volume& v, const VolumeGrid& grid, int component, std::int64_t
   if (row < 0) return false;
   switch (grid.kind) {
     case VolumeGrid::Kind::Coefficients: v.coefficients[row * v.coefficientsPerProbe + grid.index[component]] = value; break;
+    case VolumeGrid::Kind::SkyDirect: v.skyDirect[row * v.coefficientsPerProbe + grid.index[component]] = value; break;
     case VolumeGrid::Kind::Visibility: v.visibility[row * v.visibilityPerProbe + grid.index[component]] = value; break;
     case VolumeGrid::Kind::DistanceMoments:
     case VolumeGrid::Kind::SkyVisibilityMap:
@@ -79,9 +91,7 @@ bool setGridValue(Volume& v, const VolumeGrid& grid, int component, std::int64_t
 
 void prepareForReading(Volume& v, bool hasProbeStates) {
   const std::size_t n = std::size_t(v.rows.count(v.grid));
-  v.coefficients.assign(n * v.coefficientsPerProbe, 0.0f);
-  v.visibility.assign(n * v.visibilityPerProbe, 0.0f);
-  v.distanceMoments.assign(n * std::size_t(v.distanceMomentsPerProbe()), 0.0f);
+  for (const auto& [values, width] : v.floatRows()) values->assign(n * std::size_t(width), 0.0f);
   v.states.assign(hasProbeStates ? n : 0, ProbeState::Invalid);
   v.offsets.assign(hasProbeStates ? n : 0, Eigen::Vector3f::Zero());
 }
@@ -91,10 +101,7 @@ std::vector<bool> storedBricks(const Volume& v) {
 }
 
 void requireFiniteVolume(const Volume& v) {
-  const std::pair<const std::vector<float>*, int> arrays[] = {
-      {&v.coefficients, v.coefficientsPerProbe}, {&v.visibility, v.visibilityPerProbe},
-      {&v.distanceMoments, v.distanceMomentsPerProbe()}};
-  for (const auto& [values, perProbe] : arrays)
+  for (const auto& [values, perProbe] : v.floatRows())
     for (std::size_t i = 0; i < values->size(); ++i)
       if (!std::isfinite((*values)[i]))
         throw std::runtime_error(fmt::format("internal error: probe {} has a non-finite value; nothing written",

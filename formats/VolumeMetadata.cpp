@@ -18,6 +18,7 @@ namespace {
 const char* kindName(VolumeGrid::Kind kind) {
   switch (kind) {
     case VolumeGrid::Kind::Coefficients: return "irradiance_coefficients";
+    case VolumeGrid::Kind::SkyDirect: return "sky_direct_coefficients";
     case VolumeGrid::Kind::Visibility: return "sky_visibility_coefficients";
     case VolumeGrid::Kind::DistanceMoments: return "distance_moments";
     case VolumeGrid::Kind::SkyVisibilityMap: return "sky_visibility_map";
@@ -36,9 +37,11 @@ std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume
 std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume& volume, const Basis& basis,
                                                                     bool hasProbeStates) {
   nlohmann::json layout = nlohmann::json::array();
-  for (const VolumeGrid& g : volumeGrids(basis, volume.visibilityPerProbe, hasProbeStates, volume.distanceMap)) {
+  for (const VolumeGrid& g :
+       volumeGrids(basis, volume.visibilityPerProbe, hasProbeStates, volume.distanceMap, volume.keepsSkyDirect)) {
     nlohmann::json entry = {{"name", g.name}, {"kind", kindName(g.kind)}, {"components", g.components}};
-    if (g.kind == VolumeGrid::Kind::Coefficients || g.kind == VolumeGrid::Kind::Visibility ||
+    if (g.kind == VolumeGrid::Kind::Coefficients || g.kind == VolumeGrid::Kind::SkyDirect ||
+        g.kind == VolumeGrid::Kind::Visibility ||
         g.kind == VolumeGrid::Kind::DistanceMoments || g.kind == VolumeGrid::Kind::SkyVisibilityMap)
       entry["index"] = std::vector<int>(g.index, g.index + g.components);
     layout.push_back(entry);
@@ -68,6 +71,12 @@ std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume
   if (volume.distanceMomentsPerProbe() > 0)
     meta.push_back({kDistanceMapKey, distanceMapDescription(volume.distanceMap).dump()});
   if (volume.sky) meta.push_back({kSkyKey, skyMetadata(*volume.sky).dump()});
+  if (volume.keepsSkyDirect)
+    meta.push_back({kSkyDirectKey,
+                    "grids sky_direct_*: the part of the coefficients (same functions, channels and units) that is "
+                    "the sky seen directly from the probe, along the rays that escaped and the sky's importance "
+                    "samples; coefficients minus sky_direct is the light that does not come straight from the sky "
+                    "(lamps, emission, and the sky's light off surfaces), which stays when the sky is swapped"});
   for (const auto& [key, value] : volume.settings) meta.push_back({"baker.setting." + key, value});
   if (volume.shard) {
     meta.push_back({"baker.shard", shardName(*volume.shard)});
@@ -139,13 +148,24 @@ nlohmann::json distanceMapDescription(const DistanceMapLayout& layout) {
           {"invalid_probes", "probes inside geometry hold zeros: leak-aware readers turn them away"}};
 }
 
+namespace {
+
+// The value of `key`, or null when the metadata has none.
+const std::string* metadataValue(const std::vector<std::pair<std::string, std::string>>& metadata,
+                                 const std::string& key) {
+  const auto entry = std::find_if(metadata.begin(), metadata.end(), [&](const auto& e) { return e.first == key; });
+  return entry == metadata.end() ? nullptr : &entry->second;
+}
+
+}  // namespace
+
 void readDistanceMap(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume,
                      const std::string& path) {
-  const auto entry = std::find_if(metadata.begin(), metadata.end(), [](const auto& e) { return e.first == kDistanceMapKey; });
-  if (entry == metadata.end()) return;
+  const std::string* value = metadataValue(metadata, kDistanceMapKey);
+  if (!value) return;
   DistanceMapLayout layout;
   try {
-    const nlohmann::json map = nlohmann::json::parse(entry->second);
+    const nlohmann::json map = nlohmann::json::parse(*value);
     layout.size = map.at("size").get<int>();
     layout.cap = map.at("cap").get<double>();
     layout.skyVisibility = map.value("sky_visibility", false);
@@ -175,12 +195,16 @@ nlohmann::json skyMetadata(const SkyRadiance& sky) {
            "visibility before adding another (docs/RELIGHTING.md)"}};
 }
 
+void readSkyDirect(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume) {
+  volume.keepsSkyDirect = metadataValue(metadata, kSkyDirectKey) != nullptr;
+}
+
 void readSky(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume, const std::string& path) {
-  const auto entry = std::find_if(metadata.begin(), metadata.end(), [](const auto& e) { return e.first == kSkyKey; });
-  if (entry == metadata.end()) return;
+  const std::string* value = metadataValue(metadata, kSkyKey);
+  if (!value) return;
   SkyRadiance sky;
   try {
-    const nlohmann::json j = nlohmann::json::parse(entry->second);
+    const nlohmann::json j = nlohmann::json::parse(*value);
     sky.width = j.at("width").get<int>();
     sky.height = j.at("height").get<int>();
     if (sky.width != SkyRadiance::kWidth || sky.height != SkyRadiance::kHeight)

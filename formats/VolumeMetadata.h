@@ -56,6 +56,12 @@ nlohmann::json skyMetadata(const SkyRadiance& sky);
 // it is malformed, of another size, or holds a radiance that is negative or not finite.
 void readSky(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume, const std::string& path);
 
+// A volume that keeps its directly seen sky apart (Volume::skyDirect, grids "sky_direct_*") says
+// so, and what the grids mean, under this key.
+constexpr const char* kSkyDirectKey = "baker.sky_direct";
+// Sets volume.keepsSkyDirect from that key's presence.
+void readSkyDirect(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume);
+
 // Recovers volume.settings from "baker.setting.*" keys.
 void readSettings(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume);
 

@@ -59,6 +59,12 @@ double VolumeReconstruction::skyVisibility(const float* visibility, const Eigen:
   return diffuse(0, visibility, normal) / M_PI;
 }
 
+Eigen::Vector3f VolumeReconstruction::relitIrradiance(const float* rest, const float* visibility,
+                                                      const Eigen::Vector3d& normal, const SkyHarmonics& sky) const {
+  return (irradiance(rest, normal).cast<double>() + skyVisibility(visibility, normal) * sky.irradiance(normal))
+      .cast<float>();
+}
+
 Eigen::Vector3f VolumeReconstruction::radiance(const float* coefficients, const Eigen::Vector3d& direction) const {
   if (signal_ != StoredSignal::Radiance) throw std::logic_error("an irradiance volume holds no radiance");
   return basis_->reconstruct(coefficients, direction);

@@ -8,6 +8,7 @@
 #include "basis/DiffuseResponse.h"
 #include "basis/SpecularBlend.h"
 #include "basis/StoredSignal.h"
+#include "volume/SkyHarmonics.h"
 #include "volume/Volume.h"
 
 namespace baker {
@@ -29,6 +30,11 @@ class VolumeReconstruction {
   Eigen::Vector3f irradiance(const float* coefficients, const Eigen::Vector3d& normal) const;
   // (1/π) ∫ V(ω) max(0, n·ω) dω, from coefficients in channel 0's functions.
   double skyVisibility(const float* visibility, const Eigen::Vector3d& normal) const;
+  // E(n) in RGB as decoders relight it at run time under `sky` (docs/RELIGHTING.md): the light
+  // that is not the sky's, from `rest` (the coefficients less the sky_direct grids'), plus the
+  // sky's unoccluded irradiance times the probe's cosine-weighted sky visibility V(n).
+  Eigen::Vector3f relitIrradiance(const float* rest, const float* visibility, const Eigen::Vector3d& normal,
+                                  const SkyHarmonics& sky) const;
   // L(ω) in RGB: only a radiance volume holds it (`signal()` says; a logic error otherwise).
   Eigen::Vector3f radiance(const float* coefficients, const Eigen::Vector3d& direction) const;
   // The GGX-weighted mean radiance S in RGB for a unit normal, a unit view (towards the eye) and

@@ -83,6 +83,9 @@ Eigen::VectorXd visibilityOf(const Volume& level, const SkyTransfer& transfer, s
       .cast<double>();
 }
 
+// With the level's directly seen sky kept apart (Volume::skyDirect), `operators` take a black sky
+// to the new one: that part is replaced by what they give. Without it they take the old sky to
+// the new one, and their result is added.
 void relightLevel(Volume& level, const SkyTransfer& transfer, const std::vector<Eigen::MatrixXd>& operators,
                   const Basis& basis, const std::string& name) {
   const std::int64_t rows = level.rows.count(level.grid);
@@ -90,25 +93,40 @@ void relightLevel(Volume& level, const SkyTransfer& transfer, const std::vector<
   tbb::parallel_for(std::int64_t(0), rows, [&](std::int64_t row) {
     const Eigen::VectorXd v = visibilityOf(level, transfer, row);
     float* coefficients = level.coefficients.data() + row * level.coefficientsPerProbe;
+    float* skyDirect = level.keepsSkyDirect ? level.skyDirect.data() + row * level.coefficientsPerProbe : nullptr;
     for (int c = 0; c < 3; ++c) {
-      Eigen::Map<Eigen::VectorXf> channel(coefficients + basis.coefficientOffset(c), basis.coefficientCount(c));
-      const Eigen::VectorXf relit = (channel.cast<double>() + operators[std::size_t(c)] * v).cast<float>();
-      if (!relit.allFinite()) finite = false;
-      channel = relit;
+      const int offset = basis.coefficientOffset(c), count = basis.coefficientCount(c);
+      Eigen::Map<Eigen::VectorXf> channel(coefficients + offset, count);
+      const Eigen::VectorXd added = operators[std::size_t(c)] * v;
+      Eigen::VectorXd relit = channel.cast<double>() + added;
+      if (skyDirect) {
+        Eigen::Map<Eigen::VectorXf> seen(skyDirect + offset, count);
+        relit -= seen.cast<double>();
+        seen = added.cast<float>();
+        if (!seen.allFinite()) finite = false;
+      }
+      channel = relit.cast<float>();
+      if (!channel.allFinite()) finite = false;
     }
   });
   if (!finite)
     throw NumericalError(fmt::format("{}: relit values leave single precision; is the new sky's intensity sensible?", name));
   // Probes inside geometry hold their neighbours' light, as the bake filled them; their maps are
   // zeros, so they take their relit neighbours' again. A shard's part leaves that to the merge.
-  if (transfer.readsMap() && !level.shard && !level.states.empty())
+  if (transfer.readsMap() && !level.shard && !level.states.empty()) {
     fillInvalidProbes(level.grid, level.rows, level.states, level.coefficientsPerProbe, level.coefficients);
+    fillInvalidProbes(level.grid, level.rows, level.states, level.skyDirectPerProbe(), level.skyDirect);
+  }
+}
+
+bool keepsSkyDirect(const AdaptiveVolume& volume) {
+  return std::all_of(volume.levels.begin(), volume.levels.end(), [](const Volume& v) { return v.keepsSkyDirect; });
 }
 
 }  // namespace
 
-std::string relightVolume(AdaptiveVolume& volume, const Basis& basis, const SkyRadiance& sky, const std::string& description,
-                   const std::string& name) {
+SkyChange relightVolume(AdaptiveVolume& volume, const Basis& basis, const SkyRadiance& sky,
+                        const std::string& description, const std::string& name) {
   Volume& first = volume.levels.front();
   if (first.visibilityPerProbe == 0 && !first.distanceMap.skyVisibility)
     throw InputError(fmt::format("{}: holds no sky visibility, which relighting reads (an engine's export keeps none: "
@@ -123,18 +141,32 @@ std::string relightVolume(AdaptiveVolume& volume, const Basis& basis, const SkyR
   if (first.sky->rgb == sky.rgb) {
     if (!first.settings.count("baked_sky")) first.settings["baked_sky"] = setting(first, "sky", "none");
     first.settings["sky"] = description;
-    return "unchanged: the new sky is the one the volume holds";
+    return {"unchanged: the new sky is the one the volume holds", "nothing to take away: the same sky"};
   }
   const StoredSignal signal = storedSignalOf(first.settings);
   // Every level reads V the same way: adaptive levels hold no maps.
   const SkyTransfer transfer(basis, signal, BandWindow{countSetting(first, "window", name)},
                              volume.levels.size() == 1 ? first.distanceMap : DistanceMapLayout{0, 0.0});
-  const std::vector<Eigen::MatrixXd> operators = transfer.operators(*first.sky, sky);
-  for (Volume& level : volume.levels) relightLevel(level, transfer, operators, basis, name);
+  const bool exact = keepsSkyDirect(volume);
+  const std::vector<Eigen::MatrixXd> operators = transfer.operators(exact ? SkyRadiance{} : *first.sky, sky);
+  for (Volume& level : volume.levels) {
+    if (!exact) {
+      level.keepsSkyDirect = false;
+      level.skyDirect.clear();
+    }
+    relightLevel(level, transfer, operators, basis, name);
+  }
   if (!first.settings.count("baked_sky")) first.settings["baked_sky"] = setting(first, "sky", "none");
   first.settings["sky"] = description;
   first.sky = sky;
-  return transfer.visibilitySource();
+  return {transfer.visibilitySource(),
+          exact ? "exactly: each probe's directly seen sky as baked (grids sky_direct_*)"
+                : "through the stored visibility, as the new sky is added (the volume keeps no sky_direct grids)"};
+}
+
+DescribedSkyHarmonics skyHarmonicsOf(const SceneOptions& options, std::vector<std::string>& warnings) {
+  const Environment environment = environmentFromOptions(options, warnings);
+  return {SkyHarmonics::of(recordSky(environment)), skyDescription(environment)};
 }
 
 RelightReport relightVolumeFile(const RelightRequest& request) {
@@ -156,16 +188,25 @@ RelightReport relightVolumeFile(const RelightRequest& request) {
   report.otherLights = simulated(first, "punctual_lights") || simulated(first, "direct_punctual") ||
                        simulated(first, "emission") || simulated(first, "emissive_lights");
   const SkyRadiance newSky = recordSky(environment);
-  for (const auto& [which, sky] : {std::pair{report.fromSky, first.sky}, std::pair{skyDescription(environment), std::optional(newSky)}})
-    if (sky && concentratedShare(*sky) > kConcentratedShare)
+  // The old sky goes through the visibility too unless the volume keeps its directly seen part.
+  std::vector<std::pair<std::string, std::optional<SkyRadiance>>> seenThroughVisibility = {
+      {skyDescription(environment), newSky}};
+  if (!keepsSkyDirect(volume)) seenThroughVisibility.push_back({report.fromSky, first.sky});
+  for (const auto& [which, sky] : seenThroughVisibility) {
+    const double share = sky ? concentratedShare(*sky) : 0.0;
+    if (share > kConcentratedShare)
       report.warnings.push_back(fmt::format("{} holds {:.0f} % of its light in {} sr: relit through each probe's "
                                             "blurred visibility, its shadows' edges are far from a rebake's "
                                             "(docs/RELIGHTING.md)",
-                                            which, 100.0 * concentratedShare(*sky), kConcentratedSolidAngle));
-  report.visibility = relightVolume(volume, *basis, newSky, skyDescription(environment), request.volumePath);
+                                            which, 100.0 * share, kConcentratedSolidAngle));
+  }
+  const SkyChange change = relightVolume(volume, *basis, newSky, skyDescription(environment), request.volumePath);
+  report.visibility = change.visibility;
+  report.oldSkyRemoved = change.oldSkyRemoved;
   report.toSky = volume.coarsest().settings.at("sky");
   report.bakedSky = volume.coarsest().settings.at("baked_sky");
-  report.changes.push_back("the sky each probe sees directly, through its stored visibility: " + report.visibility);
+  report.changes.push_back("the sky each probe sees directly: the old one taken away " + report.oldSkyRemoved +
+                           "; the new one added through the stored visibility: " + report.visibility);
   if (report.bounces > 0 && simulated(first, "bounces"))
     report.keeps.push_back("light the sky sends through bounces off surfaces: as baked under " + report.bakedSky);
   if (report.otherLights)

@@ -8,6 +8,7 @@
 #include "formats/VolumeWriter.h"
 #include "scene/SceneOptions.h"
 #include "volume/AdaptiveVolume.h"
+#include "volume/SkyHarmonics.h"
 #include "volume/SkyRadiance.h"
 
 namespace baker {
@@ -30,19 +31,36 @@ struct RelightReport {
   int bounces = 0;              // of the bake
   bool otherLights = false;     // whether the bake had lights besides the sky (lamps, emission)
   std::string visibility;       // how V(ω) was read (SkyTransfer::visibilitySource)
+  std::string oldSkyRemoved;    // how the old sky's direct light was taken away (SkyChange)
   std::vector<std::string> changes, keeps;  // in words, what the relit volume changes and keeps
   std::vector<std::string> warnings;        // e.g. texels of the new map that were not finite
   EngineExport engineExport;
   double seconds = 0.0;
 };
 
-// Adds to every probe of `volume` (each level) what the change from its recorded sky to `sky`
-// does through its visibility (volume/SkyTransfer.h), and records `sky` (setting "sky":
-// `description`; "baked_sky" keeps the sky the bake traced). Returns how the visibility was read.
+// How a relighting read the volume, in words for reports.
+struct SkyChange {
+  std::string visibility;     // how V(ω) was read (SkyTransfer::visibilitySource)
+  std::string oldSkyRemoved;  // exactly (from Volume::skyDirect) or through the visibility
+};
+
+// Relights every probe of `volume` (each level) to `sky`, and records it (setting "sky":
+// `description`; "baked_sky" keeps the sky the bake traced). Where the volume keeps each probe's
+// directly seen sky (Volume::skyDirect), that part is replaced by `sky` seen through the stored
+// visibility (volume/SkyTransfer.h), and kept as skyDirect, so that relit volumes relight again
+// alike; otherwise the change from the recorded sky to `sky` is added through the visibility.
 // InputError when the volume holds no visibility or records no sky; NumericalError if a value
 // would leave single precision.
-std::string relightVolume(AdaptiveVolume& volume, const Basis& basis, const SkyRadiance& sky, const std::string& description,
-                   const std::string& name);
+SkyChange relightVolume(AdaptiveVolume& volume, const Basis& basis, const SkyRadiance& sky,
+                        const std::string& description, const std::string& name);
+
+// The sky `options` name (an environment map or a constant sky) as decoders take it at run time,
+// with its description as the setting "sky" gives it; `warnings` hears about texels read as 0.
+struct DescribedSkyHarmonics {
+  SkyHarmonics harmonics;
+  std::string description;
+};
+DescribedSkyHarmonics skyHarmonicsOf(const SceneOptions& options, std::vector<std::string>& warnings);
 
 // Reads the volume, relights it to the request's sky and writes it to the output (atomically:
 // nothing is written on an error). SettingError "env" when the request names no sky.

@@ -4,7 +4,9 @@ three others, against full rebakes under those skies, with --bounces 0 and 1. Sc
 sunlit_yard (lit only by the sky), window_room (only by the sky, through a window) and
 default_room under a sky (sky and an emissive panel). Each error comes with the noise of the
 rebake itself (the same rebake with another seed: each seed draws its own lattice rotations), and
-with what relighting through the visibility coefficients alone gives (a bake with --distance-map 0).
+with what relighting through the visibility coefficients alone gives (a bake with --distance-map 0),
+and with what decoders give relighting at run time (`validate --run-time-env`: the light less its
+sky_direct, plus the new sky's SH-2 irradiance times the probe's visibility V(n)).
 Errors are validate's error_of_level: a probe's largest |E_relit(n) - E_rebake(n)| over 26 normals
 and RGB, as a share of the scene's level (the mean over probes of the rebake's mean irradiance).
 The skies are ../shared/data/hdri (CI has them; the script says so when they are missing).
@@ -47,8 +49,8 @@ def bake(baker, scene, extra, sky, bounces, rays, out, seed=1, more=()):
     return time.perf_counter() - start
 
 
-def error(baker, reference, candidate):
-    report = json.loads(run(baker, "validate", reference, candidate, "--json"))
+def error(baker, reference, candidate, *more):
+    report = json.loads(run(baker, "validate", reference, candidate, "--json", *more))
     return report["error_of_level"]
 
 
@@ -80,6 +82,7 @@ def measure_one(baker, rays, work, baked_under, name, scene, extra, what, bounce
         rows.append({"scene": name, "what": what, "bounces": bounces, "target": target, "base": baked_under,
                      "relit": error(baker, rebake, relit),
                      "coefficients_only": error(baker, rebake, relit_plain),
+                     "run_time": error(baker, rebake, base, "--run-time-env", str(HDRI / target)),
                      "noise": error(baker, rebake, seed),
                      "rebake_seconds": seconds, "relight_seconds": relight_seconds})
     return rows
@@ -100,15 +103,18 @@ def report(rows, rays):
         "the scene's level (the rebake's mean irradiance over probes); mean and 99th percentile over probes. "
         "*Noise* is the same comparison for a rebake with seed 2 (its own lattice rotations): differences below it "
         "are not the relighting's. *Coefficients only* relights a bake with `--distance-map 0`, which reads the "
-        "visibility from the basis's coefficients alone (V to SH band 2).",
+        "visibility from the basis's coefficients alone (V to SH band 2). *Run time* is what the decoders compute "
+        "when an engine swaps the sky per frame (`baker validate --run-time-env`): the baked light less its "
+        "`sky_direct` grids, plus the new sky's irradiance from its SH to band 2 times the probe's sky visibility V(n).",
         "",
-        "| scene | bounces | baked under | relit to | relit: mean | relit: p99 | noise: mean | noise: p99 | coefficients only: mean | relight s | rebake s |",
-        "|---|---|---|---|---|---|---|---|---|---|---|",
+        "| scene | bounces | baked under | relit to | relit: mean | relit: p99 | noise: mean | noise: p99 | coefficients only: mean | run time: mean | relight s | rebake s |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|",
     ]
     for r in rows:
         lines.append(f"| {r['scene']} ({r['what']}) | {r['bounces']} | {r['base'].replace('_1k.hdr', '')} | {r['target'].replace('_1k.hdr', '')} | "
                      f"{percent(r['relit']['mean'])} | {percent(r['relit']['p99'])} | {percent(r['noise']['mean'])} | "
                      f"{percent(r['noise']['p99'])} | {percent(r['coefficients_only']['mean'])} | "
+                     f"{percent(r['run_time']['mean'])} | "
                      f"{r['relight_seconds']:.2f} | {r['rebake_seconds']:.2f} |")
     lines += ["", "Rows with bounces 1 include the light the sky sends off surfaces, which relighting keeps from the "
               "old sky: the gap between a row and its bounces-0 twin is that light's change (docs/RELIGHTING.md)."]

@@ -37,6 +37,28 @@ void bakerShL2Basis(vec3 n, out float y[9]) {
   y[8] = 0.546274215 * (n.x * n.x - n.y * n.y);
 }
 
+// ---- Relighting at run time (docs/RELIGHTING.md): pack textures of the coefficients less the
+// sky_direct grids' (the light that is not the sky's) and decode them with any function below,
+// then add the new sky seen through the probe's visibility:
+//   e = bakerRelitIrradiance(bakerSampleIrradianceX(rest, uvw, n), bakerSampleVisibilityX(vis, uvw, n), sky, n).
+// sky[i] is the RGB of the sky radiance's SH coefficient i (index l·l + l + m, world axes),
+// L_lm = ∫ L(ω) Y_lm(ω) dω: nine numbers per channel an engine computes from its sky each frame.
+
+// The sky's irradiance on an unoccluded surface of unit normal n, Σ A_l L_lm Y_lm(n), A = π, 2π/3, π/4.
+vec3 bakerSkyIrradiance(vec3 sky[9], vec3 n) {
+  float y[9];
+  bakerShL2Basis(n, y);
+  const float band[9] = float[9](3.141592654, 2.094395102, 2.094395102, 2.094395102, 0.785398163, 0.785398163,
+                                 0.785398163, 0.785398163, 0.785398163);
+  vec3 e = vec3(0.0);
+  for (int i = 0; i < 9; ++i) e += band[i] * y[i] * sky[i];
+  return e;
+}
+
+vec3 bakerRelitIrradiance(vec3 rest, float visibility, vec3 sky[9], vec3 n) {
+  return rest + visibility * bakerSkyIrradiance(sky, n);
+}
+
 // R, G and B of function i of a basis with `count` functions per channel.
 #define BAKER_RGB(t, count, i) vec3(t[(i) >> 2][(i) & 3], t[((count) + (i)) >> 2][((count) + (i)) & 3], \
                                     t[(2 * (count) + (i)) >> 2][(2 * (count) + (i)) & 3])

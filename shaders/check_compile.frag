@@ -30,6 +30,7 @@ layout(location = 20) uniform int slotsAcross;
 layout(binding = 70) uniform sampler2D specularBlend;
 layout(location = 21) uniform vec3 view;
 layout(location = 22) uniform float roughness;
+layout(location = 23) uniform vec3 sky[9];
 
 layout(location = 0) in vec3 worldPosition;
 layout(location = 1) in vec3 normal;
@@ -71,5 +72,6 @@ void main() {
            bakerSpecularAdSrbf(dice, n, view, roughness, specularBlend) +
            bakerSpecularAdHemi9(l2, n, view, roughness, specularBlend);
   float leak = bakerLeakWeight(specularBlend, ivec2(8, 16), 8, 2.0 * spacing, origin, origin + n, n, spacing);
+  e = bakerRelitIrradiance(e, v, sky, n);
   color = vec4(e + s.rgb * s.a, v * leak);
 }

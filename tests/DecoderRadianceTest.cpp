@@ -13,6 +13,7 @@
 #include "decoders/baker_irradiance.h"
 #include "formats/ReconstructionData.h"
 #include "formats/VolumeReconstruction.h"
+#include "tests/ImporterDecoder.h"
 #include "tests/RandomDirection.h"
 
 namespace baker {
@@ -26,22 +27,11 @@ using test::randomDirection;
 
 baker_decode::Vec3 toDecoder(const Eigen::Vector3d& d) { return {d.x(), d.y(), d.z()}; }
 
-// The decoder as an importer builds it for a radiance volume: name, sg-N's sharpness and axes, and
-// the diffuse response series of "baker.reconstruction".
+// The decoder as an importer builds it for a radiance volume; every radial basis takes its
+// diffuse response.
 baker_decode::BasisDecoder radianceDecoder(const Basis& basis) {
-  const json set = reconstructionData(basis, StoredSignal::Radiance)["function_sets"][0];
-  const bool gaussians = set["type"] == "spherical-gaussians";
-  baker_decode::BasisDecoder decoder(basis.name().c_str(), gaussians ? set["sharpness"].get<double>() : 0.0);
-  if (set.contains("axes")) {
-    std::vector<double> axes;
-    for (const json& axis : set["axes"])
-      for (int k = 0; k < 3; ++k) axes.push_back(axis[k].get<double>());
-    decoder.setLobeAxes(axes.data());
-  }
-  if (set["diffuse_response"].is_object() && set["diffuse_response"]["type"] == "legendre") {
-    const std::vector<double> series = set["diffuse_response"]["coefficients"].get<std::vector<double>>();
-    EXPECT_TRUE(decoder.setDiffuseResponse(series.data(), int(series.size()))) << basis.name();
-  }
+  baker_decode::BasisDecoder decoder = test::importerDecoder(basis, StoredSignal::Radiance);
+  EXPECT_TRUE(decoder.decodesRadiance()) << basis.name();
   return decoder;
 }
 

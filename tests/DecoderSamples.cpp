@@ -5,6 +5,8 @@
 // holding some of its bricks) and what the header samples at points in and around it.
 // `decoder_samples radiance`: per basis, radiance volumes' coefficients and what the library
 // (formats/VolumeReconstruction) reads from them: radiance, irradiance, visibility, specular.
+// `decoder_samples relit`: per basis, an irradiance volume's light less its sky_direct, its
+// visibility and a sky's SH, and the irradiance the library relights at run time from them.
 #include <algorithm>
 #include <array>
 #include <cstdio>
@@ -110,6 +112,36 @@ json radianceSamplesOf(std::unique_ptr<baker::Basis> basis, std::mt19937& rng) {
                      {"irradiance", vec(library.irradiance(c.data(), normal))},
                      {"visibility", library.skyVisibility(c.data(), normal)},
                      {"specular", {{"value", vec(s.value)}, {"albedo", s.albedo}, {"diffuse_weight", s.diffuseWeight}}}});
+  }
+  entry["cases"] = cases;
+  return entry;
+}
+
+// Random "rest" coefficients, visibility and sky SH (27 numbers: R's nine, G's, B's), and the
+// library's run-time relit irradiance (VolumeReconstruction::relitIrradiance) at random normals.
+json relitSamplesOf(const std::string& name, std::mt19937& rng) {
+  const baker::VolumeReconstruction library(baker::makeBasis(name), baker::StoredSignal::Irradiance);
+  const json set = baker::reconstructionData(library.basis(), baker::StoredSignal::Irradiance)["function_sets"][0];
+  json entry = {{"basis", name}};
+  if (set["type"] == "spherical-gaussians") entry["sharpness"] = set["sharpness"];
+  if (set.contains("axes")) entry["axes"] = set["axes"];
+  std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
+  std::normal_distribution<double> gaussian;
+  json cases = json::array();
+  for (int n = 0; n < 30; ++n) {
+    std::vector<float> rest(std::size_t(library.basis().totalCoefficients())),
+        visibility(std::size_t(library.basis().functions(0).count())), sky(27);
+    for (std::vector<float>* values : {&rest, &visibility, &sky})
+      for (float& x : *values) x = uniform(rng);
+    baker::SkyHarmonics harmonics;
+    for (int k = 0; k < 9; ++k)
+      for (int c = 0; c < 3; ++c) harmonics.radiance(k, c) = sky[std::size_t(9 * c + k)];
+    const Eigen::Vector3d normal = Eigen::Vector3d(gaussian(rng), gaussian(rng), gaussian(rng)).normalized();
+    cases.push_back({{"rest", rest},
+                     {"visibility", visibility},
+                     {"sky", sky},
+                     {"normal", {normal.x(), normal.y(), normal.z()}},
+                     {"irradiance", vec(library.relitIrradiance(rest.data(), visibility.data(), normal, harmonics))}});
   }
   entry["cases"] = cases;
   return entry;
@@ -236,6 +268,12 @@ int main(int argc, char** argv) {
     // axis, where they take the file's.
     all.push_back(radianceSamplesOf(baker::makeBasis("ad-hemi9"), rng));
     all.push_back(radianceSamplesOf(baker::makeBasis("ad-hemi9", {std::nullopt, Eigen::Vector3d(0.6, 0.0, -0.8)}), rng));
+    std::cout << all.dump() << "\n";
+    return 0;
+  }
+  if (argc > 1 && std::string(argv[1]) == "relit") {
+    json all = json::array();
+    for (const std::string& name : baker::basisNames()) all.push_back(relitSamplesOf(name, rng));
     std::cout << all.dump() << "\n";
     return 0;
   }

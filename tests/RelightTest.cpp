@@ -1,11 +1,13 @@
 // Relighting (relight/Relighting.h, volume/SkyTransfer.h): a probe under open sky against the
-// sky's irradiance summed here from the map's own texels, the same sky giving the bake back bit for
-// bit, a round trip through another sky, a relit volume against a rebake under the new sky within
-// the rebake's own noise, and the inputs it refuses.
+// sky's irradiance summed here from the map's own texels, the directly seen sky a bake keeps apart
+// against a bake without that sky, the same sky giving the bake back bit for bit, relightings that
+// compose, a relit volume against a rebake under the new sky within the rebake's own noise, and
+// the inputs it refuses.
 #include <gtest/gtest.h>
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -25,6 +27,7 @@
 #include "tests/BakerProcess.h"
 #include "tests/SyntheticVolumes.h"
 #include "tests/TestData.h"
+#include "tests/VolumeFiles.h"
 #include "volume/DistanceMoments.h"
 
 namespace baker {
@@ -161,7 +164,107 @@ test::ProcessResult relight(const std::string& dir, std::vector<std::string> arg
   return test::runBaker(dir, args);
 }
 
-TEST(Relight, TheSameSkyGivesTheBakeBackAndARoundTripReturns) {
+float largestMagnitude(const std::vector<float>& values) {
+  float largest = 0.0f;
+  for (const float v : values) largest = std::max(largest, std::abs(v));
+  return largest;
+}
+
+float largestDifference(const std::vector<float>& a, const std::vector<float>& b) {
+  EXPECT_EQ(a.size(), b.size());
+  float largest = 0.0f;
+  for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i) largest = std::max(largest, std::abs(a[i] - b[i]));
+  return largest;
+}
+
+// default_room under the low sun or a constant sky, --bounces 0. Lit by the sky alone, all a
+// probe sees is the sky directly: skyDirect must be the coefficients. With its emissive panel too,
+// coefficients − skyDirect must be the panel's light as a bake without the sky finds it (the
+// panel's samples and the lattice's share of them do not depend on the sky). For fixed lattices
+// and radiance fits; adaptive rounds, whose count follows the light, only alone.
+TEST(Relight, TheBakeKeepsTheSkyItSawDirectlyApart) {
+  const std::string dir = test::makeTempDir("RelightSkyDirect");
+  const std::string sun = test::sourcePath(kLowSun);
+  struct Way {
+    std::vector<std::string> flags;
+    bool sameRays;  // whether the panel's samples do not depend on the sky
+  };
+  const std::vector<Way> ways = {{{"--rays", "64"}, true},
+                                 {{"--rays", "64", "--signal", "radiance", "--basis", "ad-srbf"}, true},
+                                 {{"--quality", "draft"}, false}};
+  const auto flags = [](std::vector<std::string> a, const std::vector<std::string>& b) {
+    a.insert(a.end(), b.begin(), b.end());
+    return a;
+  };
+  for (const Way& way : ways)
+    for (const std::vector<std::string>& sky : {std::vector<std::string>{"--env", sun}, {"--sky", "0.5,0.7,0.9"}}) {
+      const std::string what = way.flags[1] + " " + sky[1];
+      bake(dir, flags(flags(way.flags, sky), {"--no", "emission", "--out", "sky.vdb"}));
+      const Volume alone = readVolume(dir + "/sky.vdb");
+      ASSERT_TRUE(alone.keepsSkyDirect) << what;
+      const float scale = largestMagnitude(alone.coefficients);
+      EXPECT_GT(scale, 0.0f);
+      EXPECT_LT(largestDifference(alone.skyDirect, alone.coefficients), 1e-6f * scale) << what;
+      if (!way.sameRays) continue;
+      bake(dir, flags(flags(way.flags, sky), {"--out", "lit.vdb"}));
+      bake(dir, flags(way.flags, {"--no", "environment", "--out", "dark.vdb"}));
+      const Volume lit = readVolume(dir + "/lit.vdb"), dark = readVolume(dir + "/dark.vdb");
+      EXPECT_FALSE(dark.keepsSkyDirect) << "a bake the sky does not light keeps no sky_direct grids";
+      std::vector<float> rest = lit.coefficients;
+      for (std::size_t i = 0; i < rest.size(); ++i) rest[i] -= lit.skyDirect[i];
+      EXPECT_LT(largestDifference(rest, dark.coefficients), 2e-6f * largestMagnitude(lit.coefficients)) << what;
+    }
+}
+
+// Decoders relight at run time as E_rest(n) + V(n)·E_sky(n) (`validate --run-time-sky` reads a
+// volume so). Under a constant sky c, V(n)·πc is exactly the sky's light as the bake projects it,
+// so the low sun's bake read under c is the rebake under c to float rounding (with --bounces 0,
+// whose panel light the two bakes sample alike).
+TEST(Relight, RelitAtRunTimeUnderAConstantSkyIsTheRebake) {
+  const std::string dir = test::makeTempDir("RelightRunTime");
+  bake(dir, {"--env", test::sourcePath(kLowSun), "--rays", "64", "--out", "sun.vdb"});
+  bake(dir, {"--sky", "0.5,0.7,0.9", "--rays", "64", "--out", "constant.vdb"});
+  const test::ProcessResult run =
+      test::runBaker(dir, {"validate", "constant.vdb", "sun.vdb", "--run-time-sky", "0.5,0.7,0.9", "--json"});
+  ASSERT_NE(run.exitCode, 2) << run.err;
+  const nlohmann::json report = nlohmann::json::parse(run.out);
+  EXPECT_EQ(report.at("run_time_sky"), "constant 0.5,0.7,0.9");
+  EXPECT_LT(report.at("error_of_level").at("max").get<double>(), 1e-5);
+  const test::ProcessResult stored = test::runBaker(dir, {"validate", "constant.vdb", "sun.vdb", "--json"});
+  EXPECT_GT(nlohmann::json::parse(stored.out).at("error_of_level").at("max").get<double>(), 0.1) << "the sun's light";
+}
+
+// Adaptive placement: a finer level's border probes take the coarser levels' light, sky_direct
+// included, and parts baked as shards merge into the one-process bake byte for byte. Lit by the
+// sky alone, every level's sky_direct is its coefficients.
+TEST(Relight, AdaptiveLevelsAndTheirPartsKeepTheSkyApart) {
+  const std::string dir = test::makeTempDir("RelightAdaptive");
+  const std::vector<std::string> flags = {"--placement", "adaptive", "--levels", "2", "--spacing", "0.3",
+                                          "--rays", "16", "--no", "emission", "--sky", "0.5,0.7,0.9"};
+  const auto bakeAdaptive = [&](std::initializer_list<std::string> more) {
+    std::vector<std::string> args = {test::sourcePath("data/default_room/default_room.gltf"), "--bounces", "0", "--quiet"};
+    args.insert(args.end(), flags.begin(), flags.end());
+    args.insert(args.end(), more);
+    const test::ProcessResult run = test::runBaker(dir, args);
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+  };
+  bakeAdaptive({"--out", "whole.vdb"});
+  bakeAdaptive({"--shard", "0/2", "--out", "part0.vdb"});
+  bakeAdaptive({"--shard", "1/2", "--out", "part1.vdb"});
+  const test::ProcessResult merged = test::runBaker(dir, {"merge", "merged.vdb", "part0.vdb", "part1.vdb"});
+  ASSERT_EQ(merged.exitCode, 0) << merged.err;
+  test::expectSameFiles(dir + "/merged.vdb", dir + "/whole.vdb");
+  const AdaptiveVolume whole = readLevels(dir + "/whole.vdb");
+  ASSERT_EQ(whole.levels.size(), 2u);
+  for (const Volume& level : whole.levels) {
+    ASSERT_TRUE(level.keepsSkyDirect);
+    EXPECT_TRUE(std::count(level.states.begin(), level.states.end(), ProbeState::Interpolated) > 0 ||
+                &level == &whole.levels.front());
+    EXPECT_LT(largestDifference(level.skyDirect, level.coefficients), 1e-6f * largestMagnitude(level.coefficients));
+  }
+}
+
+TEST(Relight, TheSameSkyGivesTheBakeBackAndRelightingsCompose) {
   const std::string dir = test::makeTempDir("RelightSameSky");
   const std::string sky = test::sourcePath(kLowSun);
   bake(dir, {"--env", sky, "--rays", "64", "--out", "baked.vdb"});
@@ -175,22 +278,23 @@ TEST(Relight, TheSameSkyGivesTheBakeBackAndARoundTripReturns) {
   EXPECT_EQ(same.settings.at("sky"), baked.settings.at("sky"));
   EXPECT_EQ(same.settings.at("baked_sky"), baked.settings.at("sky"));
 
+  // Through another sky or straight there: the same volume, since the light the sky does not
+  // send directly is kept as it is and the directly seen sky is replaced.
   ASSERT_EQ(relight(dir, {"baked.vdb", "--sky", "0.3,0.4,0.5", "--out", "there.vdb"}).exitCode, 0);
-  const test::ProcessResult back = relight(dir, {"there.vdb", "--env", sky, "--out", "back.vdb", "--json"});
-  ASSERT_EQ(back.exitCode, 0) << back.err;
-  const nlohmann::json report = nlohmann::json::parse(back.out);
+  const test::ProcessResult onward = relight(dir, {"there.vdb", "--sky", "0.9,0.2,0.1", "--out", "onward.vdb", "--json"});
+  ASSERT_EQ(onward.exitCode, 0) << onward.err;
+  ASSERT_EQ(relight(dir, {"baked.vdb", "--sky", "0.9,0.2,0.1", "--out", "straight.vdb"}).exitCode, 0);
+  const nlohmann::json report = nlohmann::json::parse(onward.out);
   EXPECT_EQ(report.at("from_sky"), "constant 0.3,0.4,0.5");
   EXPECT_EQ(report.at("baked_sky"), baked.settings.at("sky"));
+  EXPECT_EQ(report.at("old_sky_removed").get<std::string>().rfind("exactly", 0), 0u);
   EXPECT_EQ(report.at("keeps").size(), 1u) << "the emissive panel's light";
-  const Volume there = readVolume(dir + "/there.vdb"), returned = readVolume(dir + "/back.vdb");
-  float largest = 0.0f, moved = 0.0f, off = 0.0f;
-  for (std::size_t i = 0; i < baked.coefficients.size(); ++i) {
-    largest = std::max(largest, std::abs(baked.coefficients[i]));
-    moved = std::max(moved, std::abs(there.coefficients[i] - baked.coefficients[i]));
-    off = std::max(off, std::abs(returned.coefficients[i] - baked.coefficients[i]));
-  }
-  EXPECT_GT(moved, 0.03f * largest) << "the other sky changed the volume";
-  EXPECT_LT(off, 1e-5f * largest) << "and coming back undoes it to float rounding";
+  const Volume there = readVolume(dir + "/there.vdb"), onwards = readVolume(dir + "/onward.vdb"),
+               straight = readVolume(dir + "/straight.vdb");
+  const float largest = largestMagnitude(baked.coefficients);
+  EXPECT_GT(largestDifference(there.coefficients, baked.coefficients), 0.03f * largest) << "the other sky changed it";
+  EXPECT_LT(largestDifference(onwards.coefficients, straight.coefficients), 1e-5f * largest);
+  EXPECT_LT(largestDifference(onwards.skyDirect, straight.skyDirect), 1e-5f * largest);
 }
 
 void writeExr(const std::string& path, int width, int height, const std::vector<float>& rgb) {
@@ -245,6 +349,12 @@ TEST(Relight, MatchesARebakeWithinTheRebakesNoise) {
   expectRelitWithinTheNoise(test::makeTempDir("RelightRebake"), {"--sky", "1,1,1"}, {"--env", test::sourcePath(kLowSun)});
 }
 
+// The low sun taken away, a white sky added: the sun's sharp shadows went through the blurred
+// visibility before sky_direct kept what the bake saw of it.
+TEST(Relight, TakesASunAwayWithinTheRebakesNoise) {
+  expectRelitWithinTheNoise(test::makeTempDir("RelightSunAway"), {"--env", test::sourcePath(kLowSun)}, {"--sky", "1,1,1"});
+}
+
 // A smooth sky taken away and another added: a sky bright towards +X, relit to one bright towards
 // −X and up (measured 0.067 against a noise of 0.14).
 TEST(Relight, SwapsSmoothSkiesWithinTheRebakesNoise) {
@@ -267,6 +377,9 @@ TEST(Relight, RefusesWhatItCannotReadAndNeverWritesNaN) {
   const Volume old = test::smoothVolume({2, 2, 2}, {0, 0, 0}, 1.0);
   writeVdb(old, *makeBasis(old.basisName), dir + "/old.vdb");
   refused({"old.vdb", "--sky", "1,1,1", "--out", "out.vdb"}, "old.vdb: records no sky (baker.sky)");
+  const test::ProcessResult runTime = test::runBaker(dir, {"validate", "baked.vdb", "old.vdb", "--run-time-sky", "1,1,1"});
+  EXPECT_EQ(runTime.exitCode, 2);
+  EXPECT_NE(runTime.err.find("old.vdb: holds no sky_direct grids"), std::string::npos) << runTime.err;
   bake(dir, {"--sky", "1,1,1", "--rays", "16", "--format", "bevy", "--out", "bevy"});
   refused({"bevy", "--sky", "1,1,1", "--out", "out.vdb"}, "holds no sky visibility");
   bake(dir, {"--sky", "1,1,1", "--rays", "16", "--non-negative", "--basis", "ad-srbf", "--out", "positive.vdb"});

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/Error.h"
 #include "formats/VolumeReconstruction.h"
 #include "formats/VolumeSampler.h"
 
@@ -58,7 +59,21 @@ bool insideCells(const ProbeGrid& grid, const Eigen::Vector3d& position) {
   return true;
 }
 
-VolumeComparison compareVolumes(const Volume& reference, const Volume& candidate, std::size_t worstCount) {
+Volume lightThatIsNotTheSkys(const Volume& volume, const std::string& name) {
+  if (!volume.keepsSkyDirect)
+    throw InputError(fmt::format("{}: holds no sky_direct grids, which relighting at run time subtracts (bake it again "
+                                 "with this version, under a sky)",
+                                 name));
+  Volume rest = volume;
+  for (std::size_t i = 0; i < rest.coefficients.size(); ++i) rest.coefficients[i] -= rest.skyDirect[i];
+  return rest;
+}
+
+VolumeComparison compareVolumes(const Volume& reference, const Volume& candidateAsStored, std::size_t worstCount,
+                                const RunTimeSky& runTimeSky) {
+  const std::optional<Volume> rest =
+      runTimeSky.sky ? std::optional(lightThatIsNotTheSkys(candidateAsStored, runTimeSky.name)) : std::nullopt;
+  const Volume& candidate = rest ? *rest : candidateAsStored;
   const VolumeReconstruction referenceReading(reference), candidateReading(candidate);
   const std::vector<Eigen::Vector3d>& normals = comparisonNormals();
   const ProbeGrid& g = reference.grid;
@@ -89,7 +104,10 @@ VolumeComparison compareVolumes(const Volume& reference, const Volume& candidate
             result.gridsMatch ? candidate.visibility.data() + p * candidate.visibilityPerProbe : sample.visibility.data();
         for (std::size_t n = 0; n < normals.size(); ++n) {
           eReference[n] = referenceReading.irradiance(reference.probe(p), normals[n]).cast<double>();
-          eCandidate[n] = candidateReading.irradiance(coefficients, normals[n]).cast<double>();
+          eCandidate[n] = (runTimeSky.sky ? candidateReading.relitIrradiance(coefficients, candidateVisibility, normals[n],
+                                                                             *runTimeSky.sky)
+                                          : candidateReading.irradiance(coefficients, normals[n]))
+                              .cast<double>();
           if (visibility) {
             const double vr = referenceReading.skyVisibility(
                 reference.visibility.data() + p * reference.visibilityPerProbe, normals[n]);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "validate/IrradianceError.h"
+#include "volume/SkyHarmonics.h"
 #include "volume/Volume.h"
 
 namespace baker {
@@ -52,7 +53,16 @@ struct VolumeComparison {
   std::vector<MetadataDifference> metadataDifferences;
 };
 
-VolumeComparison compareVolumes(const Volume& reference, const Volume& candidate, std::size_t worstCount);
+// A sky to read the new volume under as decoders relight at run time (VolumeReconstruction::
+// relitIrradiance), rather than as stored; `name` names the volume in errors.
+struct RunTimeSky {
+  const SkyHarmonics* sky = nullptr;
+  std::string name;
+};
+
+// With a run-time sky, InputError when the new volume keeps no sky_direct grids.
+VolumeComparison compareVolumes(const Volume& reference, const Volume& candidate, std::size_t worstCount,
+                                const RunTimeSky& runTimeSky = {});
 
 // Whether `grid` puts probes exactly where `other` does.
 bool sameGrid(const ProbeGrid& grid, const ProbeGrid& other);

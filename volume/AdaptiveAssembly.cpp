@@ -113,15 +113,18 @@ Volume AdaptiveAssembly::level(int index, const std::vector<std::pair<std::int64
   whole.rows = ProbeRows(grid, bricks, masks);
   if (std::int64_t(bricks.size()) == grid.brickCount() && !whole.rows.holdsPartialBricks()) whole.rows = ProbeRows();
   holdZeroProbes(whole);
-  const int nc = whole.coefficientsPerProbe, nv = whole.visibilityPerProbe;
+  const auto into = whole.floatRows();
   for (const auto& [brick, p] : owners) {
     const Volume& part = parts_[p].levels[k];
-    forEachHeldProbeOfBrick(grid, part.rows, brick, [&](int x, int y, int z, std::int64_t from) {
+    const auto from = part.floatRows();
+    forEachHeldProbeOfBrick(grid, part.rows, brick, [&](int x, int y, int z, std::int64_t row) {
       const std::int64_t to = whole.rows.row(grid, x, y, z);
-      whole.states[std::size_t(to)] = part.states[std::size_t(from)];
-      whole.offsets[std::size_t(to)] = part.offsets[std::size_t(from)];
-      std::copy_n(part.coefficients.begin() + from * nc, nc, whole.coefficients.begin() + to * nc);
-      std::copy_n(part.visibility.begin() + from * nv, nv, whole.visibility.begin() + to * nv);
+      whole.states[std::size_t(to)] = part.states[std::size_t(row)];
+      whole.offsets[std::size_t(to)] = part.offsets[std::size_t(row)];
+      for (std::size_t a = 0; a < into.size(); ++a) {
+        const int w = into[a].width;
+        std::copy_n(from[a].values->begin() + row * w, w, into[a].values->begin() + to * w);
+      }
     });
   }
   requireBorderStates(whole, index, ProbeRows(grid, bricks, masks), owners);

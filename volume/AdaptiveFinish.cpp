@@ -44,10 +44,12 @@ void finishAdaptiveLevels(AdaptiveVolume& volume) {
         if (level.states[std::size_t(row)] != ProbeState::Interpolated) return;
         sampleLevels(volume.levels, index, level.grid.position(i, j, k),
                      level.coefficients.data() + row * level.coefficientsPerProbe,
-                     level.visibility.data() + row * level.visibilityPerProbe);
+                     level.visibility.data() + row * level.visibilityPerProbe,
+                     level.keepsSkyDirect ? level.skyDirect.data() + row * level.coefficientsPerProbe : nullptr);
       });
     fillInvalidProbes(level.grid, level.rows, level.states, level.coefficientsPerProbe, level.coefficients);
     fillInvalidProbes(level.grid, level.rows, level.states, level.visibilityPerProbe, level.visibility);
+    fillInvalidProbes(level.grid, level.rows, level.states, level.skyDirectPerProbe(), level.skyDirect);
     // Dropped before finer levels read this one, so that their border probes take what a reader
     // of the file samples.
     const std::vector<bool> keep = bricksWorthStoring(level);

@@ -37,8 +37,9 @@ struct LevelChoice {
 };
 LevelChoice finestLevelAt(const std::vector<Volume>& levels, int levelCount, const Eigen::Vector3d& world);
 
-// The interpolated values of levels [0, levelCount) at `world`: what a decoder returns there.
+// The interpolated values of levels [0, levelCount) at `world`: what a decoder returns there
+// (`skyDirect` too when given, for levels that keep it).
 void sampleLevels(const std::vector<Volume>& levels, int levelCount, const Eigen::Vector3d& world, float* coefficients,
-                  float* visibility);
+                  float* visibility, float* skyDirect = nullptr);
 
 }  // namespace baker

@@ -13,7 +13,8 @@
 namespace baker {
 
 double volumeMemoryBytes(double probes, const Basis& basis, int distanceValues) {
-  const double values = double(basis.totalCoefficients()) + double(basis.functions(0).count()) + distanceValues;
+  // The coefficients twice: a bake under a sky keeps its directly seen part apart (Volume::skyDirect).
+  const double values = 2.0 * double(basis.totalCoefficients()) + double(basis.functions(0).count()) + distanceValues;
   const double perProbe = values * sizeof(float) + sizeof(ProbeState) + sizeof(Eigen::Vector3f);
   return 2.0 * probes * perProbe;
 }

@@ -6,8 +6,8 @@
 
 namespace baker {
 
-// Bytes a volume of `probes` probes in `basis` holds at its peak: every probe's coefficients, sky
-// visibility, distance moments (`distanceValues` per probe), state and offset, and as much again
+// Bytes a volume of `probes` probes in `basis` holds at its peak: every probe's coefficients (and
+// their directly seen sky's part), sky visibility, distance moments (`distanceValues` per probe), state and offset, and as much again
 // while the writer or a merge lays them out. In double precision, so that no grid overflows it.
 double volumeMemoryBytes(double probes, const Basis& basis, int distanceValues = 0);
 

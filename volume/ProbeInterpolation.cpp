@@ -36,22 +36,22 @@ bool ProbeInterpolation::complete() const {
   return std::all_of(held, held + corners, [](std::int64_t row) { return row >= 0; });
 }
 
-void ProbeInterpolation::apply(const Volume& v, bool renormalise, float* coefficients, float* visibility) const {
-  std::fill_n(coefficients, v.coefficientsPerProbe, 0.0f);
-  std::fill_n(visibility, v.visibilityPerProbe, 0.0f);
-  double total = 0.0;
-  for (int n = 0; n < corners; ++n) {
-    if (held[n] < 0) continue;
-    const std::int64_t row = held[n];
-    total += weights[n];
-    for (int c = 0; c < v.coefficientsPerProbe; ++c)
-      coefficients[c] += float(weights[n] * v.coefficients[row * v.coefficientsPerProbe + c]);
-    for (int c = 0; c < v.visibilityPerProbe; ++c)
-      visibility[c] += float(weights[n] * v.visibility[row * v.visibilityPerProbe + c]);
-  }
-  if (!renormalise || total == 0.0 || total == 1.0) return;
-  for (int c = 0; c < v.coefficientsPerProbe; ++c) coefficients[c] = float(coefficients[c] / total);
-  for (int c = 0; c < v.visibilityPerProbe; ++c) visibility[c] = float(visibility[c] / total);
+void ProbeInterpolation::apply(const Volume& v, bool renormalise, float* coefficients, float* visibility,
+                               float* skyDirect) const {
+  const auto blend = [&](const std::vector<float>& values, int width, float* out) {
+    std::fill_n(out, width, 0.0f);
+    double total = 0.0;
+    for (int n = 0; n < corners; ++n) {
+      if (held[n] < 0) continue;
+      total += weights[n];
+      for (int c = 0; c < width; ++c) out[c] += float(weights[n] * values[held[n] * width + c]);
+    }
+    if (!renormalise || total == 0.0 || total == 1.0) return;
+    for (int c = 0; c < width; ++c) out[c] = float(out[c] / total);
+  };
+  blend(v.coefficients, v.coefficientsPerProbe, coefficients);
+  blend(v.visibility, v.visibilityPerProbe, visibility);
+  if (skyDirect) blend(v.skyDirect, v.skyDirectPerProbe(), skyDirect);
 }
 
 }  // namespace baker

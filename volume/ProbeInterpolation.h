@@ -17,8 +17,9 @@ struct ProbeInterpolation {
   // Every probe with a weight is held: the volume covers the position.
   bool complete() const;
   // Writes the weighted sum of the held probes' values; with `renormalise`, divided by the sum of
-  // their weights (zeros when none is held).
-  void apply(const Volume& volume, bool renormalise, float* coefficients, float* visibility) const;
+  // their weights (zeros when none is held). `skyDirect`, when given, of a volume that keeps it.
+  void apply(const Volume& volume, bool renormalise, float* coefficients, float* visibility,
+             float* skyDirect = nullptr) const;
 };
 
 ProbeInterpolation interpolationAt(const Volume& volume, const Eigen::Vector3d& world);

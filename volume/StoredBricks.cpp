@@ -78,42 +78,37 @@ void moveRows(Volume& v, std::int64_t from, std::int64_t to, std::int64_t count)
   const auto move = [&](auto& values, std::int64_t width) {
     std::copy(values.begin() + from * width, values.begin() + (from + count) * width, values.begin() + to * width);
   };
-  move(v.coefficients, v.coefficientsPerProbe);
-  move(v.visibility, v.visibilityPerProbe);
-  move(v.distanceMoments, v.distanceMomentsPerProbe());
+  for (const auto& [values, width] : v.floatRows()) move(*values, width);
   if (!v.states.empty()) move(v.states, 1);
   if (!v.offsets.empty()) move(v.offsets, 1);
 }
 
 void resizeRows(Volume& v, std::int64_t rows) {
-  v.coefficients.resize(std::size_t(rows * v.coefficientsPerProbe));
-  v.visibility.resize(std::size_t(rows * v.visibilityPerProbe));
-  v.distanceMoments.resize(std::size_t(rows * v.distanceMomentsPerProbe()));
+  for (const auto& [values, width] : v.floatRows()) values->resize(std::size_t(rows * width));
   if (!v.states.empty()) v.states.resize(std::size_t(rows));
   if (!v.offsets.empty()) v.offsets.resize(std::size_t(rows));
 }
 
 // A volume holding every probe, its rows in grid order: copied brick by brick into new arrays.
 Volume keepBricksOfWholeVolume(Volume volume, const std::vector<std::int64_t>& kept, const std::vector<std::uint8_t>& masks) {
-  const std::vector<float> coefficients = std::move(volume.coefficients), visibility = std::move(volume.visibility),
-                           distances = std::move(volume.distanceMoments);
+  std::vector<std::vector<float>> whole;
+  for (const auto& [values, width] : volume.floatRows()) whole.push_back(std::move(*values));
   const std::vector<ProbeState> states = std::move(volume.states);
   const std::vector<Eigen::Vector3f> offsets = std::move(volume.offsets);
   const ProbeGrid& g = volume.grid;
-  const int c = volume.coefficientsPerProbe, s = volume.visibilityPerProbe, d = volume.distanceMomentsPerProbe();
   volume.rows = ProbeRows(g, kept, masks);
   const std::size_t rows = std::size_t(volume.rows.count(g));
-  volume.coefficients.assign(rows * std::size_t(c), 0.0f);
-  volume.visibility.assign(rows * std::size_t(s), 0.0f);
-  volume.distanceMoments.assign(rows * std::size_t(d), 0.0f);
+  const auto arrays = volume.floatRows();
+  for (const auto& [values, width] : arrays) values->assign(rows * std::size_t(width), 0.0f);
   volume.states.assign(states.empty() ? 0 : rows, ProbeState::Invalid);
   volume.offsets.assign(offsets.empty() ? 0 : rows, Eigen::Vector3f::Zero());
   for (std::int64_t brick : kept)
     forEachHeldProbeOfBrick(g, volume.rows, brick, [&](int i, int j, int k, std::int64_t to) {
       const std::int64_t from = g.linearIndex(i, j, k);
-      std::copy_n(coefficients.begin() + from * c, c, volume.coefficients.begin() + to * c);
-      std::copy_n(visibility.begin() + from * s, s, volume.visibility.begin() + to * s);
-      std::copy_n(distances.begin() + from * d, d, volume.distanceMoments.begin() + to * d);
+      for (std::size_t a = 0; a < arrays.size(); ++a) {
+        const int w = arrays[a].width;
+        std::copy_n(whole[a].begin() + from * w, w, arrays[a].values->begin() + to * w);
+      }
       if (!states.empty()) volume.states[std::size_t(to)] = states[std::size_t(from)];
       if (!offsets.empty()) volume.offsets[std::size_t(to)] = offsets[std::size_t(from)];
     });

@@ -1,5 +1,6 @@
 #pragma once
 #include <Eigen/Core>
+#include <array>
 #include <map>
 #include <optional>
 #include <string>
@@ -25,6 +26,12 @@ struct Volume {
   std::string basisName;
   int coefficientsPerProbe = 0;
   std::vector<float> coefficients;
+  // The part of `coefficients` that is the sky seen directly along the probe's own rays (the
+  // rays that escaped, and the sky's direct-view samples), in the same layout: what relighting
+  // takes away exactly, and coefficients − skyDirect the light a decoder keeps when it swaps the
+  // sky. coefficientsPerProbe values per probe when `keepsSkyDirect`, else none.
+  bool keepsSkyDirect = false;
+  std::vector<float> skyDirect;
   // Sky visibility in channel 0's functions: V(n) = (1/π) ∫ V(ω) max(0, n·ω) dω, 1 under open
   // sky, or for radiance V(ω) itself.
   int visibilityPerProbe = 0;
@@ -54,6 +61,27 @@ struct Volume {
   // The coefficients of a probe the volume holds.
   const float* probe(std::int64_t index) const { return coefficients.data() + rowOf(index) * coefficientsPerProbe; }
   int distanceMomentsPerProbe() const { return distanceMap.size > 0 ? distanceMap.valuesPerProbe() : 0; }
+  int skyDirectPerProbe() const { return keepsSkyDirect ? coefficientsPerProbe : 0; }
+
+  // Every per-probe array of floats with its width, for code that moves, packs or checks rows
+  // alike; the order is fixed (packing relies on it).
+  template <typename Values>
+  struct Rows {
+    Values* values;
+    int width;
+  };
+  std::array<Rows<std::vector<float>>, 4> floatRows() {
+    return {{{&coefficients, coefficientsPerProbe},
+             {&skyDirect, skyDirectPerProbe()},
+             {&visibility, visibilityPerProbe},
+             {&distanceMoments, distanceMomentsPerProbe()}}};
+  }
+  std::array<Rows<const std::vector<float>>, 4> floatRows() const {
+    return {{{&coefficients, coefficientsPerProbe},
+             {&skyDirect, skyDirectPerProbe()},
+             {&visibility, visibilityPerProbe},
+             {&distanceMoments, distanceMomentsPerProbe()}}};
+  }
 };
 
 }  // namespace baker

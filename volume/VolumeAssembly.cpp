@@ -40,6 +40,8 @@ void requireSameBake(const Volume& part, const std::string& name, const Volume& 
   if (part.visibilityPerProbe != first.visibilityPerProbe)
     mismatch("baker.visibility_per_probe", std::to_string(part.visibilityPerProbe),
              std::to_string(first.visibilityPerProbe));
+  if (part.keepsSkyDirect != first.keepsSkyDirect)
+    mismatch("baker.sky_direct", part.keepsSkyDirect ? "present" : "absent", first.keepsSkyDirect ? "present" : "absent");
   const DistanceMapLayout &d = part.distanceMap, &e = first.distanceMap;
   if (d.size != e.size || d.cap != e.cap || d.skyVisibility != e.skyVisibility)
     mismatch("baker.distance_map", fmt::format("size {} cap {:.17g} sky {}", d.size, d.cap, d.skyVisibility),
@@ -63,6 +65,7 @@ Volume volumeWithoutValues(const Volume& volume) {
   header.grid = volume.grid;
   header.basisName = volume.basisName;
   header.coefficientsPerProbe = volume.coefficientsPerProbe;
+  header.keepsSkyDirect = volume.keepsSkyDirect;
   header.visibilityPerProbe = volume.visibilityPerProbe;
   header.distanceMap = volume.distanceMap;
   header.sky = volume.sky;
@@ -73,9 +76,7 @@ Volume volumeWithoutValues(const Volume& volume) {
 
 void holdZeroProbes(Volume& volume) {
   const std::size_t probes = std::size_t(volume.rows.count(volume.grid));
-  volume.coefficients.assign(probes * volume.coefficientsPerProbe, 0.0f);
-  volume.visibility.assign(probes * volume.visibilityPerProbe, 0.0f);
-  volume.distanceMoments.assign(probes * std::size_t(volume.distanceMomentsPerProbe()), 0.0f);
+  for (const auto& [values, width] : volume.floatRows()) values->assign(probes * std::size_t(width), 0.0f);
   volume.states.assign(probes, ProbeState::Invalid);
   volume.offsets.assign(probes, Eigen::Vector3f::Zero());
 }
@@ -127,16 +128,18 @@ void VolumeAssembly::addBaked(const Volume& part) {
 }
 
 void VolumeAssembly::copyBricks(const Volume& part, const Shard& shard) {
-  const int nc = whole_.coefficientsPerProbe, nv = whole_.visibilityPerProbe, nd = whole_.distanceMomentsPerProbe();
+  const auto from = part.floatRows();
+  const auto to = whole_.floatRows();
   for (const std::int64_t b : shardBricks(whole_.grid, shard))
     for (const std::int64_t p : probesOfBrick(whole_.grid, b)) {
       const std::int64_t r = part.rowOf(p);
       if (r < 0) throw std::logic_error("VolumeAssembly: a part without one of its own bricks");
       whole_.states[p] = part.states[r];
       whole_.offsets[p] = part.offsets[r];
-      std::copy_n(part.coefficients.begin() + r * nc, nc, whole_.coefficients.begin() + p * nc);
-      std::copy_n(part.visibility.begin() + r * nv, nv, whole_.visibility.begin() + p * nv);
-      std::copy_n(part.distanceMoments.begin() + r * nd, nd, whole_.distanceMoments.begin() + p * nd);
+      for (std::size_t a = 0; a < to.size(); ++a) {
+        const int w = to[a].width;
+        std::copy_n(from[a].values->begin() + r * w, w, to[a].values->begin() + p * w);
+      }
     }
 }
 
@@ -161,26 +164,30 @@ void VolumeAssembly::addPacked(const Shard& shard, const std::vector<float>& pac
 const float* unpackProbe(const float* in, Volume& volume, std::int64_t row, int stateLimit) {
   const float state = in[0];
   if (!(state >= 0.0f && state < float(stateLimit) && state == float(int(state)))) return nullptr;
-  const int nc = volume.coefficientsPerProbe, nv = volume.visibilityPerProbe, nd = volume.distanceMomentsPerProbe();
   const std::size_t r = std::size_t(row);
   volume.states[r] = ProbeState(std::uint8_t(state));
   for (int c = 0; c < 3; ++c) volume.offsets[r][c] = in[1 + c];
-  std::copy_n(in + 4, nc, volume.coefficients.begin() + row * nc);
-  std::copy_n(in + 4 + nc, nv, volume.visibility.begin() + row * nv);
-  std::copy_n(in + 4 + nc + nv, nd, volume.distanceMoments.begin() + row * nd);
-  return in + 4 + nc + nv + nd;
+  in += 4;
+  for (const auto& [values, width] : volume.floatRows()) {
+    std::copy_n(in, width, values->begin() + row * width);
+    in += width;
+  }
+  return in;
 }
 
 Volume VolumeAssembly::finish() {
   requireEveryShard(given_);
   fillInvalidProbes(whole_.grid, whole_.states, whole_.coefficientsPerProbe, whole_.coefficients);
   fillInvalidProbes(whole_.grid, whole_.states, whole_.visibilityPerProbe, whole_.visibility);
+  fillInvalidProbes(whole_.grid, whole_.states, whole_.skyDirectPerProbe(), whole_.skyDirect);
   whole_.shard.reset();
   return std::move(whole_);
 }
 
 int packedValuesPerProbe(const Volume& like) {
-  return 4 + like.coefficientsPerProbe + like.visibilityPerProbe + like.distanceMomentsPerProbe();
+  int values = 4;  // state and offset
+  for (const auto& rows : like.floatRows()) values += rows.width;
+  return values;
 }
 
 std::size_t packedSize(const Volume& like, const std::vector<std::int64_t>& bricks) {
@@ -194,7 +201,6 @@ std::size_t packedSize(const Volume& like, const ProbeRows& rows, const std::vec
 }
 
 std::vector<float> packBricks(const Volume& part, const std::vector<std::int64_t>& bricks) {
-  const int nc = part.coefficientsPerProbe, nv = part.visibilityPerProbe, nd = part.distanceMomentsPerProbe();
   std::vector<float> packed;
   packed.reserve(packedSize(part, part.rows, bricks));
   for (const std::int64_t b : bricks) {
@@ -202,9 +208,8 @@ std::vector<float> packBricks(const Volume& part, const std::vector<std::int64_t
     forEachHeldProbeOfBrick(part.grid, part.rows, b, [&](int, int, int, std::int64_t r) {
       packed.push_back(float(part.states[r]));
       packed.insert(packed.end(), part.offsets[r].data(), part.offsets[r].data() + 3);
-      packed.insert(packed.end(), part.coefficients.begin() + r * nc, part.coefficients.begin() + (r + 1) * nc);
-      packed.insert(packed.end(), part.visibility.begin() + r * nv, part.visibility.begin() + (r + 1) * nv);
-      packed.insert(packed.end(), part.distanceMoments.begin() + r * nd, part.distanceMoments.begin() + (r + 1) * nd);
+      for (const auto& [values, width] : part.floatRows())
+        packed.insert(packed.end(), values->begin() + r * width, values->begin() + (r + 1) * width);
     });
   }
   return packed;

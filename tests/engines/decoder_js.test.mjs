@@ -4,7 +4,9 @@
 // adaptive): finestLevelNeighbourhood picks the header's level and weights at every point, and E
 // and visibility blended there agree within 1e-5 of max(1, |E|). Then radiance volumes
 // (decoder_samples radiance): radiance, irradiance, visibility and specular against the library's
-// readings within 1e-5 of max(1, |value|), and the piecewise Ambient Dice variants refused.
+// readings within 1e-5 of max(1, |value|), and the piecewise Ambient Dice variants refused. Then
+// relighting at run time (decoder_samples relit): relitIrradiance against the library's within
+// 1e-5 of max(1, |E|), every basis.
 // argv: node decoder_js.test.mjs DECODER_SAMPLES SOURCE_DIR
 import { execFileSync } from 'node:child_process';
 import path from 'node:path';
@@ -13,7 +15,7 @@ import { pathToFileURL } from 'node:url';
 const [ samplesBinary, sourceDir ] = process.argv.slice( 2 );
 const { BasisDecoder, blendProbes, finestLevelNeighbourhood } = await import( pathToFileURL( path.join( sourceDir, 'decoders/baker_irradiance.js' ) ) );
 const samples = ( ...args ) => JSON.parse( execFileSync( samplesBinary, args, { encoding: 'utf8', maxBuffer: 1 << 30 } ) );
-const bases = samples(), adaptive = samples( 'adaptive' ), radiance = samples( 'radiance' );
+const bases = samples(), adaptive = samples( 'adaptive' ), radiance = samples( 'radiance' ), relit = samples( 'relit' );
 let checks = 0, failures = 0, worst = 0;
 for ( const entry of bases ) {
 	const decoder = new BasisDecoder( entry.basis, entry.sharpness ?? 0 );
@@ -107,6 +109,21 @@ for ( const entry of radiance ) {
 	}
 }
 console.log( `${ decodedRadiance } of ${ radiance.length } bases decode radiance; largest difference from the library ${ worstRadiance.toExponential( 2 ) } of max(1, |value|)` );
+let worstRelit = 0;
+for ( const entry of relit ) {
+	const decoder = new BasisDecoder( entry.basis, entry.sharpness ?? 0 );
+	if ( entry.axes ) decoder.setLobeAxes( entry.axes );
+	for ( const c of entry.cases ) {
+		const got = decoder.relitIrradiance( c.rest, c.visibility, c.normal, c.sky );
+		for ( let k = 0; k < 3; ++ k ) {
+			const error = Math.abs( got[ k ] - c.irradiance[ k ] ) / Math.max( 1, Math.abs( c.irradiance[ k ] ) );
+			worstRelit = Math.max( worstRelit, error );
+			++ checks;
+			if ( ! ( error <= 1e-5 ) && ++ failures <= 20 ) console.error( `FAIL: relit ${ entry.basis } at ${ c.normal }: ${ got[ k ] }, library ${ c.irradiance[ k ] }` );
+		}
+	}
+}
+console.log( `${ relit.length } bases relit at run time; largest difference from the library ${ worstRelit.toExponential( 2 ) } of max(1, |E|)` );
 console.log( `${ bases.length } bases; largest difference from the header ${ worst.toExponential( 2 ) }` );
 console.log( `decoder_js: ${ checks - failures } of ${ checks } checks passed` );
-process.exit( failures === 0 && bases.length > 0 && decodedRadiance > 0 ? 0 : 1 );
+process.exit( failures === 0 && bases.length > 0 && decodedRadiance > 0 && relit.length > 0 ? 0 : 1 );
