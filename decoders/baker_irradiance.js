@@ -480,6 +480,60 @@ export function blendProbes( values, neighbourhood, count ) {
 	return out;
 }
 
+// Leak-aware weights (docs/LEAKS.md): a volume with "baker.distance_map" holds per probe an N × N
+// octahedral map of the mean and mean squared distance to the first surface, in units of the
+// map's cap (value 2t and 2t + 1 of texel t = i + N·j). Multiply each corner's trilinear weight
+// by leakWeight() and divide by the sum of the products.
+
+// Octahedral coordinates in [0, 1]² of unit d, +Y up (the file's "encoding").
+export function octahedralEncode( d ) {
+	const l1 = Math.abs( d[ 0 ] ) + Math.abs( d[ 1 ] ) + Math.abs( d[ 2 ] );
+	let px = d[ 0 ] / l1, pz = d[ 2 ] / l1;
+	if ( d[ 1 ] < 0 ) [ px, pz ] = [ ( 1 - Math.abs( pz ) ) * ( px < 0 ? - 1 : 1 ), ( 1 - Math.abs( px ) ) * ( pz < 0 ? - 1 : 1 ) ];
+	return [ 0.5 * ( px + 1 ), 0.5 * ( pz + 1 ) ];
+}
+
+// The weight in (0, 1] of the probe baked at `probe` (grid position plus its probe_offset) with
+// distance moments `moments` (2·size² values from `offset`), for a shading point on a surface of
+// unit `normal`; map is { size, cap } of "baker.distance_map". 1 where its map reads open towards
+// the point, else the back-face weight times Chebyshev's bound.
+export function leakWeight( map, moments, probe, point, normal, spacing, offset = 0 ) {
+	const fromProbe = [ 0, 1, 2 ].map( ( a ) => point[ a ] + 0.25 * spacing * normal[ a ] - probe[ a ] );
+	const r = Math.sqrt( dot( fromProbe, fromProbe ) );
+	if ( ! ( r > 0 ) || ! Number.isFinite( r ) ) return 1;
+	const direction = fromProbe.map( ( x ) => x / r );
+	const uv = octahedralEncode( direction ), n = map.size, low = [ 0, 0 ], f = [ 0, 0 ];
+	for ( let a = 0; a < 2; ++ a ) {
+		const x = uv[ a ] * n - 0.5;
+		low[ a ] = Math.min( Math.max( Math.floor( x ), 0 ), n - 2 );
+		f[ a ] = Math.min( Math.max( x - low[ a ], 0 ), 1 );
+	}
+	let mean = 0, meanSquare = 0, open = true;
+	for ( let corner = 0; corner < 4; ++ corner ) {
+		const di = corner & 1, dj = corner >> 1;
+		const w = ( di ? f[ 0 ] : 1 - f[ 0 ] ) * ( dj ? f[ 1 ] : 1 - f[ 1 ] );
+		const t = offset + 2 * ( low[ 0 ] + di + n * ( low[ 1 ] + dj ) );
+		mean += w * moments[ t ];
+		meanSquare += w * moments[ t + 1 ];
+		if ( w > 0 && moments[ t ] < 1 ) open = false;
+	}
+	if ( open ) return 1;
+	mean *= map.cap;
+	meanSquare *= map.cap * map.cap;
+	const facing = 0.5 * ( 1 - dot( direction, normal ) );
+	let weight = ( facing * facing + 0.2 ) / 1.2;
+	if ( r > mean ) {
+		const variance = Math.abs( meanSquare - mean * mean ), beyond = r - mean;
+		const chebyshev = variance / ( variance + beyond * beyond );
+		weight *= chebyshev * chebyshev * chebyshev;
+	}
+	// The paper's floor and crush threshold, divided by 1.2 with its back-face weight.
+	const floor = 1e-6 / 1.2, crush = 0.2 / 1.2;
+	if ( ! ( weight >= floor ) ) weight = floor;
+	if ( weight < crush ) weight *= weight * weight / ( crush * crush );
+	return weight;
+}
+
 // Adaptive volumes (docs/ADAPTIVE.md): levels, coarsest first, each { origin, spacing, dims,
 // subBricksHeld } where subBricksHeld[bx + Bx·(by + By·bz)] (B = ⌈dims / 8⌉) holds the sub-bricks of 4³
 // the level holds of brick (bx, by, bz) of 8³ probes, bit s = sx + 2·sy + 4·sz for the probes with

@@ -5,6 +5,8 @@
 // holding some of its bricks) and what the header samples at points in and around it.
 // `decoder_samples radiance`: per basis, radiance volumes' coefficients and what the library
 // (formats/VolumeReconstruction) reads from them: radiance, irradiance, visibility, specular.
+// `decoder_samples leak`: random distance maps, probes, points and normals, and the header's
+// leak-aware weight (leakWeight) for each.
 // `decoder_samples relit`: per basis, an irradiance volume's light less its sky_direct, its
 // visibility and a sky's SH, and the irradiance the library relights at run time from them.
 #include <algorithm>
@@ -147,6 +149,33 @@ json relitSamplesOf(const std::string& name, std::mt19937& rng) {
   return entry;
 }
 
+// Maps whose texels are open (moments 1) with probability 0.3 and otherwise hold a mean distance
+// and a mean square at least its square; points within two spacings of the probe.
+json leakSamples(std::mt19937& rng) {
+  std::uniform_real_distribution<double> uniform(0.0, 1.0), around(-2.0, 2.0);
+  std::normal_distribution<double> gaussian;
+  json cases = json::array();
+  for (int n = 0; n < 400; ++n) {
+    const baker_decode::DistanceMap map{n % 2 == 0 ? 8 : 4, 2.5};
+    std::vector<float> moments;
+    for (int t = 0; t < map.size * map.size; ++t) {
+      const double mean = uniform(rng) < 0.3 ? 1.0 : uniform(rng);
+      moments.push_back(float(mean));
+      moments.push_back(float(std::min(1.0, mean * mean + 0.05 * uniform(rng))));
+    }
+    const baker_decode::Vec3 probe{around(rng), around(rng), around(rng)};
+    const baker_decode::Vec3 point{probe.x + around(rng), probe.y + around(rng), probe.z + around(rng)};
+    const baker_decode::Vec3 normal = baker_decode::normalize({gaussian(rng), gaussian(rng), gaussian(rng)});
+    cases.push_back({{"map", {{"size", map.size}, {"cap", map.cap}}},
+                     {"moments", moments},
+                     {"probe", {probe.x, probe.y, probe.z}},
+                     {"point", {point.x, point.y, point.z}},
+                     {"normal", {normal.x, normal.y, normal.z}},
+                     {"weight", baker_decode::leakWeight(map, moments.data(), probe, point, normal, 1.0)}});
+  }
+  return cases;
+}
+
 // Three levels, spacing ÷3 per level, each holding some bricks, the coarsest not all of them. Per held brick
 // 8³ probes of random numbers, as a pool slot holds them (probes past the grid's edge included).
 struct AdaptiveLevel {
@@ -269,6 +298,10 @@ int main(int argc, char** argv) {
     all.push_back(radianceSamplesOf(baker::makeBasis("ad-hemi9"), rng));
     all.push_back(radianceSamplesOf(baker::makeBasis("ad-hemi9", {std::nullopt, Eigen::Vector3d(0.6, 0.0, -0.8)}), rng));
     std::cout << all.dump() << "\n";
+    return 0;
+  }
+  if (argc > 1 && std::string(argv[1]) == "leak") {
+    std::cout << leakSamples(rng).dump() << "\n";
     return 0;
   }
   if (argc > 1 && std::string(argv[1]) == "relit") {

@@ -6,16 +6,17 @@
 // (decoder_samples radiance): radiance, irradiance, visibility and specular against the library's
 // readings within 1e-5 of max(1, |value|), and the piecewise Ambient Dice variants refused. Then
 // relighting at run time (decoder_samples relit): relitIrradiance against the library's within
-// 1e-5 of max(1, |E|), every basis.
+// 1e-5 of max(1, |E|), every basis. Then leak-aware weights (decoder_samples leak): leakWeight
+// against the header's within 1e-12, open and walled maps alike.
 // argv: node decoder_js.test.mjs DECODER_SAMPLES SOURCE_DIR
 import { execFileSync } from 'node:child_process';
 import path from 'node:path';
 import { pathToFileURL } from 'node:url';
 
 const [ samplesBinary, sourceDir ] = process.argv.slice( 2 );
-const { BasisDecoder, blendProbes, finestLevelNeighbourhood } = await import( pathToFileURL( path.join( sourceDir, 'decoders/baker_irradiance.js' ) ) );
+const { BasisDecoder, blendProbes, finestLevelNeighbourhood, leakWeight } = await import( pathToFileURL( path.join( sourceDir, 'decoders/baker_irradiance.js' ) ) );
 const samples = ( ...args ) => JSON.parse( execFileSync( samplesBinary, args, { encoding: 'utf8', maxBuffer: 1 << 30 } ) );
-const bases = samples(), adaptive = samples( 'adaptive' ), radiance = samples( 'radiance' ), relit = samples( 'relit' );
+const bases = samples(), adaptive = samples( 'adaptive' ), radiance = samples( 'radiance' ), relit = samples( 'relit' ), leak = samples( 'leak' );
 let checks = 0, failures = 0, worst = 0;
 for ( const entry of bases ) {
 	const decoder = new BasisDecoder( entry.basis, entry.sharpness ?? 0 );
@@ -124,6 +125,16 @@ for ( const entry of relit ) {
 	}
 }
 console.log( `${ relit.length } bases relit at run time; largest difference from the library ${ worstRelit.toExponential( 2 ) } of max(1, |E|)` );
+let worstLeak = 0, walled = 0;
+for ( const c of leak ) {
+	const got = leakWeight( c.map, c.moments, c.probe, c.point, c.normal, 1 );
+	const error = Math.abs( got - c.weight );
+	worstLeak = Math.max( worstLeak, error );
+	if ( c.weight < 1 ) ++ walled;
+	++ checks;
+	if ( ! ( error <= 1e-12 ) && ++ failures <= 20 ) console.error( `FAIL: leak weight at ${ c.point }: ${ got }, header ${ c.weight }` );
+}
+console.log( `${ leak.length } leak-aware weights (${ walled } below 1); largest difference from the header ${ worstLeak.toExponential( 2 ) }` );
 console.log( `${ bases.length } bases; largest difference from the header ${ worst.toExponential( 2 ) }` );
 console.log( `decoder_js: ${ checks - failures } of ${ checks } checks passed` );
-process.exit( failures === 0 && bases.length > 0 && decodedRadiance > 0 && relit.length > 0 ? 0 : 1 );
+process.exit( failures === 0 && bases.length > 0 && decodedRadiance > 0 && relit.length > 0 && walled > 0 ? 0 : 1 );
