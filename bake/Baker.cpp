@@ -66,6 +66,7 @@ void bakeBrick(const RayTracer& tracer, const BakeSettings& settings, const Prob
       taskRows.push_back(rows[c]);
     }
   auto arrays = volume.floatRows();
+  // In Volume::floatRows()'s order, which every copy below follows.
   std::vector<float>* buffers[] = {&scratch.coefficients, &scratch.skyDirect, &scratch.visibility, &scratch.distances};
   for (std::size_t a = 0; a < arrays.size(); ++a) buffers[a]->resize(tasks.size() * std::size_t(arrays[a].width));
   probeBaker.bake(tasks, scratch.coefficients.data(), scratch.visibility.data(), &counts, nullptr, &tally,

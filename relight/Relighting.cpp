@@ -188,9 +188,9 @@ RelightReport relightVolumeFile(const RelightRequest& request) {
   report.otherLights = simulated(first, "punctual_lights") || simulated(first, "direct_punctual") ||
                        simulated(first, "emission") || simulated(first, "emissive_lights");
   const SkyRadiance newSky = recordSky(environment);
+  const std::string newSkyDescription = skyDescription(environment);
   // The old sky goes through the visibility too unless the volume keeps its directly seen part.
-  std::vector<std::pair<std::string, std::optional<SkyRadiance>>> seenThroughVisibility = {
-      {skyDescription(environment), newSky}};
+  std::vector<std::pair<std::string, std::optional<SkyRadiance>>> seenThroughVisibility = {{newSkyDescription, newSky}};
   if (!keepsSkyDirect(volume)) seenThroughVisibility.push_back({report.fromSky, first.sky});
   for (const auto& [which, sky] : seenThroughVisibility) {
     const double share = sky ? concentratedShare(*sky) : 0.0;
@@ -200,7 +200,7 @@ RelightReport relightVolumeFile(const RelightRequest& request) {
                                             "(docs/RELIGHTING.md)",
                                             which, 100.0 * share, kConcentratedSolidAngle));
   }
-  const SkyChange change = relightVolume(volume, *basis, newSky, skyDescription(environment), request.volumePath);
+  const SkyChange change = relightVolume(volume, *basis, newSky, newSkyDescription, request.volumePath);
   report.visibility = change.visibility;
   report.oldSkyRemoved = change.oldSkyRemoved;
   report.toSky = volume.coarsest().settings.at("sky");
