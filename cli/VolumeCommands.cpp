@@ -118,21 +118,12 @@ int runSampleCommand(int argc, char** argv) {
     const std::optional<SpecularRequest> specular = specularRequest(specularFlags);
     const AdaptiveVolume levels = readLevels(path);
     const VolumeReconstruction reading(levels.coarsest());
-    // The finest level whose probes around the position are all held, as an engine picks it.
-    const LevelChoice choice = finestLevelAt(levels.levels, int(levels.levels.size()), position);
-    const Volume& volume = levels.levels[std::size_t(choice.level)];
-    if (leakAware && volume.distanceMomentsPerProbe() == 0)
+    if (leakAware && levels.coarsest().distanceMomentsPerProbe() == 0)
       throw InputError(fmt::format("{}: holds no distance moments, which --leak-aware reads (bake it again with "
                                    "--placement uniform and --distance-map above 0)",
                                    path));
-    ProbeInterpolation interpolation = choice.interpolation;
-    LeakAwareCorner corners[8];
-    const bool reweighed = leakAware && weighAgainstLeaks(volume, position, normal, interpolation, corners);
-    VolumeSample s;
-    s.gridPosition = interpolation.gridPosition;
-    s.coefficients.resize(std::size_t(volume.coefficientsPerProbe));
-    s.visibility.resize(std::size_t(volume.visibilityPerProbe));
-    interpolation.apply(volume, reweighed || !interpolation.complete(), s.coefficients.data(), s.visibility.data());
+    const SurfaceSample s = sampleOnSurface(levels, position, normal, leakAware, path);
+    const Volume& volume = levels.levels[std::size_t(s.level)];
     const Eigen::Vector3f e = reading.irradiance(s.coefficients.data(), normal);
     const bool hasVisibility = volume.visibilityPerProbe > 0;
     const double sky = hasVisibility ? reading.skyVisibility(s.visibility.data(), normal) : 0.0;
@@ -144,14 +135,14 @@ int runSampleCommand(int argc, char** argv) {
                           {"position", {position.x(), position.y(), position.z()}},
                           {"normal", {normal.x(), normal.y(), normal.z()}},
                           {"grid_position", {s.gridPosition.x(), s.gridPosition.y(), s.gridPosition.z()}},
-                          {"level", choice.level},
+                          {"level", s.level},
                           {"level_spacing", volume.grid.spacing},
                           {"irradiance", {e.x(), e.y(), e.z()}},
                           {"coefficients", s.coefficients}};
       j["sky_visibility"] = hasVisibility ? nlohmann::json(sky) : nlohmann::json(nullptr);
       j["specular"] = glossy;
       j["leak_aware"] = leakAware;
-      if (leakAware) j["probe_weights"] = probeWeightsJson(interpolation, corners);
+      if (leakAware) j["probe_weights"] = probeWeightsJson(s.interpolation, s.corners);
       std::cout << j.dump(2) << "\n";
     } else {
       std::cout << fmt::format("irradiance E = ({:.6g}, {:.6g}, {:.6g}) at ({}, {}, {}) for normal ({:.4f}, {:.4f}, "
@@ -159,7 +150,7 @@ int runSampleCommand(int argc, char** argv) {
                                e.x(), e.y(), e.z(), position.x(), position.y(), position.z(), normal.x(), normal.y(),
                                normal.z(), s.gridPosition.x(), s.gridPosition.y(), s.gridPosition.z());
       if (levels.levels.size() > 1)
-        std::cout << fmt::format("level {} of {} (spacing {:.4g} m)\n", choice.level, levels.levels.size(),
+        std::cout << fmt::format("level {} of {} (spacing {:.4g} m)\n", s.level, levels.levels.size(),
                                  volume.grid.spacing);
       if (hasVisibility) std::cout << fmt::format("sky visibility {:.4f}\n", sky);
       if (!glossy.is_null())

@@ -14,6 +14,7 @@
 #include "cli/PreviewCommand.h"
 #include "cli/ProbeCommand.h"
 #include "cli/RelightCommand.h"
+#include "cli/RenderCommand.h"
 #include "cli/ValidateCommand.h"
 #include "cli/ViewCommand.h"
 #include "cli/VolumeCommands.h"
@@ -43,6 +44,8 @@ const std::vector<Command>& commands() {
       {"sample", "baker sample VOLUME --at P --normal N", "irradiance and sky visibility at a point, for a normal",
        baker::runSampleCommand},
       {"preview", "baker preview VOLUME --out PNG", "a PNG of a volume's middle slices", baker::runPreviewCommand},
+      {"render", "baker render SCENE --eye P --look-at Q", "a scene's surfaces lit by traced irradiance and by a volume",
+       baker::runRenderCommand},
       {"view", "baker view VOLUME --out DIR", "a page that shows a volume and its scene in a browser",
        baker::runViewCommand},
       {"validate", "baker validate REF NEW", "compare a volume with another, or with Cycles references",

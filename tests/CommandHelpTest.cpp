@@ -8,7 +8,7 @@
 namespace baker {
 namespace {
 
-const char* const kCommands[] = {"probe", "info", "inspect", "sample", "preview", "validate", "accuracy", "env", "bases"};
+const char* const kCommands[] = {"probe", "info", "inspect", "sample", "preview", "render", "validate", "accuracy", "env", "bases"};
 
 TEST(CommandHelp, HelpListsEveryCommand) {
   const std::string dir = test::makeTempDir("command-help");
@@ -25,7 +25,7 @@ TEST(CommandHelp, EachCommandShowsItsOptionsBothWays) {
   const std::string dir = test::makeTempDir("command-help-each");
   const std::pair<const char*, const char*> expected[] = {
       {"bake", "--quality"}, {"probe", "--at"}, {"info", "--sky"},        {"inspect", "--json"}, {"sample", "--normal"},
-      {"preview", "--exposure"}, {"validate", "--tolerance"}, {"accuracy", "--reference-rays"},
+      {"preview", "--exposure"}, {"render", "--look-at"}, {"validate", "--tolerance"}, {"accuracy", "--reference-rays"},
       {"env", "--sg-sharpness"}, {"bases", "--json"}};
   for (const auto& [command, option] : expected) {
     const test::ProcessResult help = test::runBaker(dir, std::string("help ") + command);

@@ -6,6 +6,7 @@
 
 #include "formats/VolumeReconstruction.h"
 #include "formats/VolumeSampler.h"
+#include "validate/DisplayColour.h"
 #include "validate/ReferencePanoramas.h"
 
 namespace baker {
@@ -24,15 +25,6 @@ void fillRect(RgbImage& image, int x, int y, int w, int h, const Eigen::Vector3f
   for (int row = std::max(y, 0); row < std::min(y + h, image.height); ++row)
     for (int column = std::max(x, 0); column < std::min(x + w, image.width); ++column)
       std::copy(colour.data(), colour.data() + 3, image.pixel(row, column));
-}
-
-Eigen::Vector3f displayed(const Eigen::Vector3f& e, double exposure) {
-  Eigen::Vector3f c;
-  for (int i = 0; i < 3; ++i) {
-    const double x = std::max(0.0, exposure * e[i]);
-    c[i] = float(x / (1.0 + x));
-  }
-  return c;
 }
 
 // The probes of one slice as the panel shows them, row by row from the top.
@@ -100,19 +92,12 @@ void drawSlice(RgbImage& image, int x0, int y0, int cell, const Volume& v, const
     }
 }
 
-double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  const auto middle = values.begin() + values.size() / 2;
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
-}
-
 // E(n) over the lat-long directions of a width × height image.
 RgbImage sphereImage(int width, int height, const std::vector<Eigen::Vector3d>& e, double exposure) {
   RgbImage image(width, height);
   for (int row = 0; row < height; ++row)
     for (int column = 0; column < width; ++column) {
-      const Eigen::Vector3f c = displayed(e[std::size_t(row) * width + column].cast<float>(), exposure);
+      const Eigen::Vector3f c = displayedColour(e[std::size_t(row) * width + column].cast<float>(), exposure);
       std::copy(c.data(), c.data() + 3, image.pixel(row, column));
     }
   return image;
@@ -130,7 +115,7 @@ void drawColourBar(Preview& preview, int barWidth, int barTop) {
   for (int column = 0; column < barWidth; ++column) {
     const double e = barWidth > 1 ? preview.colourBarEnd * column / (barWidth - 1) : 0.0;
     fillRect(preview.image, kMargin + column, barTop, 1, kColourBarHeight,
-             displayed(Eigen::Vector3f::Constant(float(e)), preview.exposure));
+             displayedColour(Eigen::Vector3f::Constant(float(e)), preview.exposure));
   }
   if (preview.colourBarEnd > 0.0) {
     const double largestDecade = std::pow(10.0, std::floor(std::log10(preview.colourBarEnd)));
@@ -190,7 +175,7 @@ Preview renderPreview(const Volume& volume, const PreviewOptions& options) {
         luminance.push_back(e.mean());
         preview.maxIrradiance = std::max(preview.maxIrradiance, double(e.maxCoeff()));
       }
-  preview.medianIrradiance = median(luminance);
+  preview.medianIrradiance = medianOf(luminance);
   const double typical = preview.medianIrradiance > 0.0 ? preview.medianIrradiance : preview.maxIrradiance;
   preview.exposure = options.exposure ? *options.exposure : typical > 0.0 ? 1.0 / (2.0 * typical) : 1.0;
   // x / (1 + x) = 0.9 at x = 9.
@@ -213,8 +198,8 @@ Preview renderPreview(const Volume& volume, const PreviewOptions& options) {
   for (int s = 0; s < 2; ++s) {
     std::vector<Eigen::Vector3f> up, down, sky;
     for (std::size_t q = 0; q < slices[s].probes.size(); ++q) {
-      up.push_back(displayed(values[s].up[q], preview.exposure));
-      down.push_back(displayed(values[s].down[q], preview.exposure));
+      up.push_back(displayedColour(values[s].up[q], preview.exposure));
+      down.push_back(displayedColour(values[s].down[q], preview.exposure));
       sky.push_back(Eigen::Vector3f::Constant(std::clamp(values[s].skyUp[q], 0.0f, 1.0f)));
     }
     const std::vector<Eigen::Vector3f>* panels[3] = {&up, &down, &sky};
