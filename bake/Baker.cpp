@@ -24,7 +24,7 @@ int rotationOf(int i, int j, int k) { return (i & 1) + 2 * (j & 1) + 4 * (k & 1)
 
 // A brick's values as the probe baker writes them, task after task; kept from brick to brick.
 struct BrickScratch {
-  std::vector<float> coefficients, skyDirect, visibility, distances;
+  std::vector<float> coefficients, skyDirect, skyBounced, visibility, distances;
 };
 
 // The probes of brick `brick`: placed (moved out of geometry, or marked invalid) and traced,
@@ -67,11 +67,13 @@ void bakeBrick(const RayTracer& tracer, const BakeSettings& settings, const Prob
     }
   auto arrays = volume.floatRows();
   // In Volume::floatRows()'s order, which every copy below follows.
-  std::vector<float>* buffers[] = {&scratch.coefficients, &scratch.skyDirect, &scratch.visibility, &scratch.distances};
+  std::vector<float>* buffers[] = {&scratch.coefficients, &scratch.skyDirect, &scratch.skyBounced, &scratch.visibility,
+                                   &scratch.distances};
   for (std::size_t a = 0; a < arrays.size(); ++a) buffers[a]->resize(tasks.size() * std::size_t(arrays[a].width));
   probeBaker.bake(tasks, scratch.coefficients.data(), scratch.visibility.data(), &counts, nullptr, &tally,
                   {volume.distanceMap, volume.distanceMomentsPerProbe() > 0 ? scratch.distances.data() : nullptr},
-                  volume.keepsSkyDirect ? scratch.skyDirect.data() : nullptr);
+                  volume.keepsSkyDirect ? scratch.skyDirect.data() : nullptr,
+                  volume.keepsSkyBounced ? scratch.skyBounced.data() : nullptr);
   for (std::size_t a = 0; a < arrays.size(); ++a) {
     const std::size_t width = std::size_t(arrays[a].width);
     for (std::size_t t = 0; t < tasks.size(); ++t)
@@ -87,11 +89,12 @@ void requireFiniteBake(const Volume& volume) {
       throw NumericalError(fmt::format("probe {} of the bake has a non-finite coefficient (the scene's radiance "
                                        "overflows float); nothing was written",
                                        volume.rows.probeAt(volume.grid, std::int64_t(i) / volume.coefficientsPerProbe)));
-  for (std::size_t i = 0; i < volume.skyDirect.size(); ++i)
-    if (!std::isfinite(volume.skyDirect[i]))
-      throw NumericalError(fmt::format("probe {} of the bake has a non-finite coefficient of its directly seen sky "
-                                       "(the sky's radiance overflows float); nothing was written",
-                                       volume.rows.probeAt(volume.grid, std::int64_t(i) / volume.coefficientsPerProbe)));
+  for (const std::vector<float>* sky : {&volume.skyDirect, &volume.skyBounced})
+    for (std::size_t i = 0; i < sky->size(); ++i)
+      if (!std::isfinite((*sky)[i]))
+        throw NumericalError(fmt::format("probe {} of the bake has a non-finite coefficient of its sky light kept "
+                                         "apart (the sky's radiance overflows float); nothing was written",
+                                         volume.rows.probeAt(volume.grid, std::int64_t(i) / volume.coefficientsPerProbe)));
   for (std::size_t i = 0; i < volume.visibility.size(); ++i)
     if (!std::isfinite(volume.visibility[i]))
       throw NumericalError(fmt::format("probe {} of the bake has a non-finite sky visibility; nothing was written",
@@ -129,9 +132,11 @@ Volume BrickBaker::emptyVolume(const ProbeGrid& grid, const ProbeRows& rows) con
   volume.coefficientsPerProbe = probeBaker_->coefficientsPerProbe();
   volume.visibilityPerProbe = probeBaker_->visibilityPerProbe();
   volume.keepsSkyDirect = probeBaker_->keepsSkyDirect();
+  volume.keepsSkyBounced = probeBaker_->keepsSkyBounced();
   const std::size_t probes = std::size_t(volume.rows.count(grid));
   volume.coefficients.assign(probes * volume.coefficientsPerProbe, 0.0f);
   volume.skyDirect.assign(probes * std::size_t(volume.skyDirectPerProbe()), 0.0f);
+  volume.skyBounced.assign(probes * std::size_t(volume.skyBouncedPerProbe()), 0.0f);
   volume.visibility.assign(probes * volume.visibilityPerProbe, 0.0f);
   volume.states.assign(probes, ProbeState::Invalid);
   volume.offsets.assign(probes, Eigen::Vector3f::Zero());
@@ -203,6 +208,7 @@ Volume bakeVolume(const Scene& scene, const RayTracer& tracer, const Basis& basi
     fillInvalidProbes(grid, volume.states, volume.coefficientsPerProbe, volume.coefficients);
     fillInvalidProbes(grid, volume.states, volume.visibilityPerProbe, volume.visibility);
     fillInvalidProbes(grid, volume.states, volume.skyDirectPerProbe(), volume.skyDirect);
+    fillInvalidProbes(grid, volume.states, volume.skyBouncedPerProbe(), volume.skyBounced);
   }
   requireFiniteBake(volume);
   baker.finishStats({&volume}, stats);

@@ -177,7 +177,7 @@ const SurfacePoint& PathIntegrator::surfaceAt(const Hit& hit, SurfacePoint* loca
 
 void PathIntegrator::trace(const Eigen::Vector3f& position, std::uint64_t probeId, const Eigen::Vector3f* directions,
                            int count, Eigen::Vector3f* radiance, float* visibility, RayCounts* counts,
-                           const ProbeView* directView, float* hitDistance) const {
+                           const ProbeView* directView, float* hitDistance, Eigen::Vector3f* skyBounced) const {
   const Environment& sky = scene_.environment;
   const bool seeSky = settings_.environment && sky.emits();
   thread_local Scratch scratch;
@@ -194,6 +194,7 @@ void PathIntegrator::trace(const Eigen::Vector3f& position, std::uint64_t probeI
       const int ray = first + i;
       const Hit& hit = hits[i];
       radiance[ray].setZero();
+      if (skyBounced) skyBounced[ray].setZero();
       visibility[ray] = hit.missed() ? 1.0f : 0.0f;
       if (hitDistance) hitDistance[ray] = hit.missed() ? std::numeric_limits<float>::infinity() : hit.distance;
       if (hit.missed()) {
@@ -224,12 +225,12 @@ void PathIntegrator::trace(const Eigen::Vector3f& position, std::uint64_t probeI
   const bool lastContinuation = sampleEmitters_ || sampleEnvironment_;
   for (int bounce = 1; bounce <= settings_.bounces && live > 0; ++bounce) {
     if (bounce == 1)
-      addNextEvents(vertices, live, scratch, radiance, counts, directView, directions);
+      addNextEvents(vertices, live, scratch, radiance, skyBounced, counts, directView, directions);
     else
-      addNextEvents(vertices, live, scratch, radiance, counts);
+      addNextEvents(vertices, live, scratch, radiance, skyBounced, counts);
     if (bounce == settings_.bounces && !lastContinuation) break;
     if (aimFromVertices_ && bounce < settings_.bounces) aimAtLights(vertices, live, scratch, radiance, counts);
-    live = continuePaths(vertices, live, bounce < settings_.bounces, scratch, radiance, counts);
+    live = continuePaths(vertices, live, bounce < settings_.bounces, scratch, radiance, skyBounced, counts);
   }
 }
 
@@ -244,23 +245,28 @@ struct PathIntegrator::ShadowBatch {
   ShadowBatch(Scratch& scratch, std::size_t most) : ShadowBatch(scratch.rays, scratch, most) {}
   ShadowBatch(ScratchBuffer<Ray>& store, Scratch& scratch, std::size_t most)
       : rays(store.reserve(most)), pending(scratch.pending.reserve(most)) {}
-  void resolve(const RayTracer& tracer, Scratch& scratch, Eigen::Vector3f* radiance, std::int64_t* counter) const {
+  // `alsoTo`, when given, receives the same contributions (the sky's, kept apart).
+  void resolve(const RayTracer& tracer, Scratch& scratch, Eigen::Vector3f* radiance, std::int64_t* counter,
+               Eigen::Vector3f* alsoTo = nullptr) const {
     if (count == 0) return;
     bool* blocked = scratch.blocked.reserve(std::size_t(count));
     tracer.occluded(rays, count, blocked);
     for (int k = 0; k < count; ++k)
-      if (!blocked[k]) radiance[pending[k].path] += pending[k].contribution;
+      if (!blocked[k]) {
+        radiance[pending[k].path] += pending[k].contribution;
+        if (alsoTo) alsoTo[pending[k].path] += pending[k].contribution;
+      }
     *counter += count;
   }
 };
 
 void PathIntegrator::addNextEvents(Vertex* vertices, int count, Scratch& scratch, Eigen::Vector3f* radiance,
-                                   RayCounts* counts, const ProbeView* firstHits,
+                                   Eigen::Vector3f* skyBounced, RayCounts* counts, const ProbeView* firstHits,
                                    const Eigen::Vector3f* directions) const {
   if (settings_.punctualLights && !scene_.lights.empty())
     addPunctualEvents(vertices, count, scratch, radiance, counts, firstHits, directions);
   if (sampleEmitters_) addEmitterEvents(vertices, count, scratch, radiance, counts);
-  if (sampleEnvironment_) addEnvironmentEvents(vertices, count, scratch, radiance, counts);
+  if (sampleEnvironment_) addEnvironmentEvents(vertices, count, scratch, radiance, skyBounced, counts);
 }
 
 void PathIntegrator::addPunctualEvents(Vertex* vertices, int count, Scratch& scratch, Eigen::Vector3f* radiance,
@@ -376,7 +382,7 @@ void PathIntegrator::addEmitterEvents(Vertex* vertices, int count, Scratch& scra
 }
 
 void PathIntegrator::addEnvironmentEvents(Vertex* vertices, int count, Scratch& scratch, Eigen::Vector3f* radiance,
-                                          RayCounts* counts) const {
+                                          Eigen::Vector3f* skyBounced, RayCounts* counts) const {
   const Environment& sky = scene_.environment;
   ShadowBatch batch(scratch, std::size_t(count));
   for (int k = 0; k < count; ++k) {
@@ -392,7 +398,7 @@ void PathIntegrator::addEnvironmentEvents(Vertex* vertices, int count, Scratch& 
     batch.rays[batch.count] = {v.origin, s.direction, 0.0f, std::numeric_limits<float>::infinity()};
     batch.pending[batch.count++] = {v.path, contribution};
   }
-  batch.resolve(tracer_, scratch, radiance, &counts->environmentShadow);
+  batch.resolve(tracer_, scratch, radiance, &counts->environmentShadow, skyBounced);
 }
 
 void PathIntegrator::aimAtLights(Vertex* vertices, int count, Scratch& scratch, Eigen::Vector3f* radiance,
@@ -515,7 +521,7 @@ int PathIntegrator::sampleContinuations(Vertex* vertices, int count, Ray* rays, 
 }
 
 int PathIntegrator::continuePaths(Vertex* vertices, int count, bool keepVertices, Scratch& scratch,
-                                  Eigen::Vector3f* radiance, RayCounts* counts) const {
+                                  Eigen::Vector3f* radiance, Eigen::Vector3f* skyBounced, RayCounts* counts) const {
   Ray* rays = scratch.rays.reserve(std::size_t(count));
   float* bsdfPdf = scratch.pdfs.reserve(std::size_t(count));
   const int survivors = sampleContinuations(vertices, count, rays, bsdfPdf);
@@ -541,7 +547,9 @@ int PathIntegrator::continuePaths(Vertex* vertices, int count, bool keepVertices
       if (hit.missed()) {
         if (sampleEnvironment_) {
           const float weight = powerHeuristic(pdf, sky.pdf(ray.direction));
-          radiance[path] += throughput.cwiseProduct(sky.radiance(ray.direction)) * weight;
+          const Eigen::Vector3f skyLight = throughput.cwiseProduct(sky.radiance(ray.direction)) * weight;
+          radiance[path] += skyLight;
+          if (skyBounced) skyBounced[path] += skyLight;
         }
         continue;
       }

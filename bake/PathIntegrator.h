@@ -38,9 +38,13 @@ class PathIntegrator {
   // probe's lattice and what it samples by importance is weighted by the lattice's MIS share:
   // the sky seen, the emission of a first hit and punctual lights' next-event term there. With
   // `hitDistance`, hitDistance[i] is how far ray i went to its first hit (+∞ when it escaped).
+  // With `skyBounced`, skyBounced[i] is the part of radiance[i] that is the sky's light after one
+  // reflection or more (its next-event terms and the continuations that escaped): what a new sky
+  // would change beside the sky seen directly.
   void trace(const Eigen::Vector3f& position, std::uint64_t probeId, const Eigen::Vector3f* directions, int count,
              Eigen::Vector3f* radiance, float* visibility, RayCounts* counts,
-             const ProbeView* directView = nullptr, float* hitDistance = nullptr) const;
+             const ProbeView* directView = nullptr, float* hitDistance = nullptr,
+             Eigen::Vector3f* skyBounced = nullptr) const;
 
   const EmitterSampler& emitters() const { return emitters_; }
   const LightAim& lightAim() const { return lightAim_; }
@@ -55,8 +59,9 @@ class PathIntegrator {
   struct Aimed;
   // `firstHits`: the vertices are the first hits of the probe's lattice `directions`, and their
   // punctual terms keep the lattice's share (DirectView).
-  void addNextEvents(Vertex* vertices, int count, Scratch& scratch, Eigen::Vector3f* radiance, RayCounts* counts,
-                     const ProbeView* firstHits = nullptr, const Eigen::Vector3f* directions = nullptr) const;
+  void addNextEvents(Vertex* vertices, int count, Scratch& scratch, Eigen::Vector3f* radiance,
+                     Eigen::Vector3f* skyBounced, RayCounts* counts, const ProbeView* firstHits = nullptr,
+                     const Eigen::Vector3f* directions = nullptr) const;
   // Before a path continues, each vertex also aims a ray near a punctual light: a surface close
   // to a light, found by the cosine continuation only now and then, lights the path strongly,
   // and the aimed ray finds it often (LightAim), both combined by MIS.
@@ -67,7 +72,7 @@ class PathIntegrator {
   void addEmitterEvents(Vertex* vertices, int count, Scratch& scratch, Eigen::Vector3f* radiance,
                         RayCounts* counts) const;
   void addEnvironmentEvents(Vertex* vertices, int count, Scratch& scratch, Eigen::Vector3f* radiance,
-                            RayCounts* counts) const;
+                            Eigen::Vector3f* skyBounced, RayCounts* counts) const;
   // The aimed rays' first hits, each lit by the light it aimed at (one shadow ray each).
   void shadeAimedHits(const Ray* rays, const Aimed* aimed, int aimedRays, Scratch& scratch, Eigen::Vector3f* radiance,
                       RayCounts* counts) const;
@@ -76,7 +81,7 @@ class PathIntegrator {
   int sampleContinuations(Vertex* vertices, int count, Ray* rays, float* bsdfPdf) const;
   // Returns how many vertices the continued paths made (in place of the old ones).
   int continuePaths(Vertex* vertices, int count, bool keepVertices, Scratch& scratch, Eigen::Vector3f* radiance,
-                    RayCounts* counts) const;
+                    Eigen::Vector3f* skyBounced, RayCounts* counts) const;
   // In a textured scene, locates the surfaces a packet hit and starts loading their texels:
   // texture lookups at scattered hits miss the cache, and a packet's are announced before any
   // is shaded, so that their latencies overlap.

@@ -149,7 +149,8 @@ ProbeBaker::ProbeBaker(const Scene& scene, const RayTracer& tracer, const Basis&
       directView_(scene, tracer, settings.transport, integrator_.emitters(), integrator_.lightAim()),
       coefficientsPerProbe_(basis.totalCoefficients()),
       visibilityPerProbe_(basis.functions(0).count()),
-      keepsSkyDirect_(settings.transport.environment && scene.environment.emits() && !settings.projection.nonNegative) {
+      keepsSkyDirect_(settings.transport.environment && scene.environment.emits() && !settings.projection.nonNegative),
+      keepsSkyBounced_(keepsSkyDirect_ && settings.transport.bounces > 0) {
   const DirectionSet fibonacci = sphericalFibonacci(settings.rays);
   weights_ = fibonacci.weights;
   for (int round = 0; round < settings.convergence.maxRounds; ++round)
@@ -208,7 +209,7 @@ void ProbeBaker::buildIrradianceOperators(const std::vector<DirectionSet>& sets)
 // would carry their quadrature's error, 0.5 % for ad-srbf at 256 rays). They are handed on as
 // the moments G·c, which projectLatticeExpansion's G⁻¹ turns back into c.
 void ProbeBaker::fitRoundsByLeastSquares(const Eigen::MatrixXd& sampledGram, Eigen::MatrixXd& latticeExpansion,
-                                         int taskIndex, int batchSize, bool keepSky) const {
+                                         int taskIndex, int batchSize, int skyParts) const {
   for (std::size_t g = 0; g < groups_.size(); ++g) {
     const ChannelGroup& group = groups_[g];
     const int offset = ownFunctions_.offset(int(g)), n = group.functions;
@@ -218,8 +219,8 @@ void ProbeBaker::fitRoundsByLeastSquares(const Eigen::MatrixXd& sampledGram, Eig
     std::vector<int> columns;
     for (int c = 0; c < group.channelCount; ++c) columns.push_back(group.firstChannel + c);
     if (g == 0) columns.push_back(3);  // sky visibility, in channel 0's functions
-    if (keepSky)  // the directly seen sky's channels
-      for (int c = 0; c < group.channelCount; ++c) columns.push_back(4 + group.firstChannel + c);
+    for (int part = 0; part < skyParts; ++part)  // the sky's channels, seen directly and off surfaces
+      for (int c = 0; c < group.channelCount; ++c) columns.push_back(4 + 3 * part + group.firstChannel + c);
     for (int c : columns) {
       auto moments = latticeExpansion.block(offset, c * batchSize + taskIndex, n, 1);
       moments = group.gram * fit.solve(Eigen::VectorXd(moments));
@@ -255,11 +256,54 @@ void ProbeBaker::buildRadianceOperators(const std::vector<DirectionSet>& sets) {
   }
 }
 
+namespace {
+
+// A lattice's rays: directions, quadrature weights and what each brought back (radiance, whether
+// it escaped, and the sky's light off surfaces when that is kept apart).
+struct LatticeRays {
+  const Eigen::Vector3f* directions;
+  const std::vector<double>* weights;
+  int count;
+  const Eigen::Vector3f* radiance;
+  const float* sky;
+  const Eigen::Vector3f* bounced;
+};
+
+// The lattice as deltas, like the direct-view samples: n·w·L(ω)·f(ω) per ray, n its size, into
+// the probe's columns of `expansion` (c·batchSize + taskIndex: channels 0-2, sky visibility 3,
+// then each kept part of the sky's channels), and ray by ray into `sampledGram` (BᵀWB) when given.
+void addRaysAsDeltas(const SphericalFunctions& functions, ColorSpace space, const LatticeRays& rays, int skyParts,
+                     int taskIndex, int batchSize, Eigen::MatrixXd& expansion, Eigen::MatrixXd* sampledGram) {
+  const int count = functions.count();
+  thread_local std::vector<double> y;
+  y.resize(std::size_t(count));
+  const auto add = [&](int firstColumn, const Eigen::Vector3d& value) {
+    for (int i = 0; i < count; ++i)
+      for (int c = 0; c < 3; ++c) expansion(i, (firstColumn + c) * batchSize + taskIndex) += value[c] * y[i];
+  };
+  for (int r = 0; r < rays.count; ++r) {
+    const double weight = (*rays.weights)[std::size_t(r)] * rays.count;
+    functions.evaluate(rays.directions[r].cast<double>(), y.data());
+    const Eigen::Vector3d value = toColorSpace(space, rays.radiance[r]).cast<double>() * weight;
+    add(0, value);
+    const double seen = double(rays.sky[r]) * weight;
+    for (int i = 0; i < count; ++i) expansion(i, 3 * batchSize + taskIndex) += seen * y[i];
+    // An escaped ray brought back the sky alone (PathIntegrator): its value is the sky's.
+    if (skyParts > 0 && rays.sky[r] > 0.0f) add(4, value);
+    if (skyParts > 1) add(7, toColorSpace(space, rays.bounced[r]).cast<double>() * weight);
+    if (sampledGram)
+      sampledGram->selfadjointView<Eigen::Lower>().rankUpdate(Eigen::Map<const Eigen::VectorXd>(y.data(), count),
+                                                              weight);
+  }
+}
+
+}  // namespace
+
 ProbeBaker::~ProbeBaker() = default;
 
 ProbeBaker::Rounds ProbeBaker::traceRounds(const ProbeTask& task, const std::vector<PunctualAtProbe::Arrival>& lights,
                                            std::vector<PunctualAtProbe::Arrival>* direct, Eigen::MatrixXd& latticeExpansion,
-                                           int taskIndex, int batchSize, bool keepSky, RayCounts* counts,
+                                           int taskIndex, int batchSize, int skyParts, RayCounts* counts,
                                            ProbeSamples* samples, DistanceMomentsAccumulator* distances) const {
   const ConvergenceSettings& convergence = settings_.convergence;
   const ColorSpace space = basis_.colorSpace();
@@ -267,13 +311,11 @@ ProbeBaker::Rounds ProbeBaker::traceRounds(const ProbeTask& task, const std::vec
   addAxisIrradiance(lights, &punctualPart);
   RoundStatistics statistics(punctualPart);
 
-  thread_local std::vector<Eigen::Vector3f> directions, radiance;
+  thread_local std::vector<Eigen::Vector3f> directions, radiance, bounced;
   thread_local std::vector<float> sky, hitDistance;
-  thread_local std::vector<double> y;
   thread_local std::vector<PunctualAtProbe::Arrival> latticeDirect;
   const SphericalFunctions& expansion = *directExpansion_;
   const int count = expansion.count();
-  y.resize(count);
   const bool fitsRadiance = settings_.projection.signal == StoredSignal::Radiance;
   thread_local Eigen::MatrixXd sampledGram;  // BᵀWB over the probe's lattices, lower triangle
   if (fitsRadiance) sampledGram.setZero(count, count);
@@ -286,6 +328,7 @@ ProbeBaker::Rounds ProbeBaker::traceRounds(const ProbeTask& task, const std::vec
     const int rays = int(unturned.size());
     directions.resize(rays);
     radiance.resize(rays);
+    bounced.resize(rays);
     sky.resize(rays);
     hitDistance.resize(rays);
     const ProbeView view = directView_.at(task.position, rays);
@@ -296,7 +339,7 @@ ProbeBaker::Rounds ProbeBaker::traceRounds(const ProbeTask& task, const std::vec
       const Eigen::Matrix3d turn = latticeRotation(settings_.transport.seed, task.id, lattice).cast<double>();
       for (int r = 0; r < rays; ++r) directions[r] = (turn * unturned.directions[r]).normalized().cast<float>();
       integrator_.trace(task.position, id, directions.data(), rays, radiance.data(), sky.data(), counts, &view,
-                        distances ? hitDistance.data() : nullptr);
+                        distances ? hitDistance.data() : nullptr, skyParts > 1 ? bounced.data() : nullptr);
       // Every ray of every round weighs the same, as in the sums below.
       if (distances) distances->add(directions.data(), hitDistance.data(), rays);
       latticeDirect.clear();
@@ -304,24 +347,9 @@ ProbeBaker::Rounds ProbeBaker::traceRounds(const ProbeTask& task, const std::vec
       estimates[half] = latticeIrradiance(directions.data(), unturned.weights, radiance.data(), latticeDirect);
       for (PunctualAtProbe::Arrival& a : latticeDirect) a.irradiance *= float(rays);
       direct->insert(direct->end(), latticeDirect.begin(), latticeDirect.end());
-      // The lattice as deltas, like the direct-view samples: n·w·L(ω)·f(ω) per ray.
-      for (int r = 0; r < rays; ++r) {
-        const double weight = unturned.weights[r] * rays;
-        expansion.evaluate(directions[r].cast<double>(), y.data());
-        const Eigen::Vector3d value = toColorSpace(space, radiance[r]).cast<double>() * weight;
-        const double seen = double(sky[r]) * weight;
-        for (int i = 0; i < count; ++i) {
-          for (int c = 0; c < 3; ++c) latticeExpansion(i, c * batchSize + taskIndex) += value[c] * y[i];
-          latticeExpansion(i, 3 * batchSize + taskIndex) += seen * y[i];
-        }
-        // An escaped ray brought back the sky alone (PathIntegrator): its value is the sky's.
-        if (keepSky && sky[r] > 0.0f)
-          for (int i = 0; i < count; ++i)
-            for (int c = 0; c < 3; ++c) latticeExpansion(i, (4 + c) * batchSize + taskIndex) += value[c] * y[i];
-        if (fitsRadiance)
-          sampledGram.selfadjointView<Eigen::Lower>().rankUpdate(Eigen::Map<const Eigen::VectorXd>(y.data(), count),
-                                                                 weight);
-      }
+      addRaysAsDeltas(expansion, space, {directions.data(), &unturned.weights, rays, radiance.data(), sky.data(),
+                                         skyParts > 1 ? bounced.data() : nullptr},
+                      skyParts, taskIndex, batchSize, latticeExpansion, fitsRadiance ? &sampledGram : nullptr);
       if (samples) {
         samples->directions.insert(samples->directions.end(), directions.begin(), directions.end());
         for (double w : unturned.weights) samples->weights.push_back(w * rays);
@@ -332,8 +360,8 @@ ProbeBaker::Rounds ProbeBaker::traceRounds(const ProbeTask& task, const std::vec
     statistics.add(rays, estimates[0], estimates[1]);
   }
   const std::int64_t traced = raysAfterRounds(settings_.rays, statistics.rounds());
-  for (int c = 0; c < (keepSky ? 7 : 4); ++c) latticeExpansion.col(c * batchSize + taskIndex) /= double(traced);
-  if (fitsRadiance) fitRoundsByLeastSquares(sampledGram / double(traced), latticeExpansion, taskIndex, batchSize, keepSky);
+  for (int c = 0; c < 4 + 3 * skyParts; ++c) latticeExpansion.col(c * batchSize + taskIndex) /= double(traced);
+  if (fitsRadiance) fitRoundsByLeastSquares(sampledGram / double(traced), latticeExpansion, taskIndex, batchSize, skyParts);
   for (PunctualAtProbe::Arrival& a : *direct) a.irradiance /= float(traced);
   if (samples)
     for (double& w : samples->weights) w /= double(traced);
@@ -367,8 +395,9 @@ struct ProbeBaker::ArrivalExpansion {
 };
 
 // Probes in order of rotation, so that each rotation's columns are one block: per rotation,
-// channel 0 of its probes, then channel 1, channel 2, visibility, and when the directly seen sky
-// is kept apart its channels 0, 1, 2 (`width` columns per probe). (A fixed lattice only.)
+// channel 0 of its probes, then channel 1, channel 2, visibility, and for each part of the sky
+// kept apart (seen directly; off surfaces) its channels 0, 1, 2 (`width` columns per probe). (A
+// fixed lattice only.)
 struct ProbeBaker::RotationBlocks {
   struct Block {
     int rotation, first, count;
@@ -378,8 +407,8 @@ struct ProbeBaker::RotationBlocks {
   std::vector<int> blockOf;  // of each probe in rotation order
   int width;
 
-  RotationBlocks(const std::vector<ProbeTask>& tasks, bool keepSky)
-      : order(tasks.size()), blockOf(tasks.size()), width(keepSky ? 7 : 4) {
+  RotationBlocks(const std::vector<ProbeTask>& tasks, int skyParts)
+      : order(tasks.size()), blockOf(tasks.size()), width(4 + 3 * skyParts) {
     std::iota(order.begin(), order.end(), 0);
     std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return tasks[a].rotation < tasks[b].rotation; });
     for (std::size_t s = 0; s < tasks.size(); ++s) {
@@ -395,9 +424,10 @@ void ProbeBaker::traceLattice(const ProbeTask& task, const RotationBlocks& rotat
                               std::vector<PunctualAtProbe::Arrival>* direct, RayCounts* counts,
                               ProbeSamples* samples, DistanceMomentsAccumulator* distances) const {
   const int rays = settings_.rays;
-  thread_local std::vector<Eigen::Vector3f> radiance;
+  thread_local std::vector<Eigen::Vector3f> radiance, bounced;
   thread_local std::vector<float> sky;
   radiance.resize(rays);
+  bounced.resize(rays);
   sky.resize(rays);
   const RotationBlocks::Block& block = rotations.blocks[rotations.blockOf[s]];
   const std::vector<Eigen::Vector3f>& dirs = directions_[block.rotation];
@@ -405,18 +435,22 @@ void ProbeBaker::traceLattice(const ProbeTask& task, const RotationBlocks& rotat
   const ProbeView view = directView_.at(task.position, rays);
   thread_local std::vector<float> hitDistance;
   hitDistance.resize(rays);
+  const int skyParts = (rotations.width - 4) / 3;
   integrator_.trace(task.position, task.id, dirs.data(), rays, radiance.data(), sky.data(), counts, &view,
-                    distances ? hitDistance.data() : nullptr);
+                    distances ? hitDistance.data() : nullptr, skyParts > 1 ? bounced.data() : nullptr);
   if (distances) distances->add(dirs.data(), hitDistance.data(), rays);
   const int base = rotations.width * block.first;
-  const bool keepSky = rotations.width == 7;
   for (int r = 0; r < rays; ++r) {
     const Eigen::Vector3f value = toColorSpace(basis_.colorSpace(), radiance[r]);
     for (int c = 0; c < 3; ++c) columns(r, base + c * block.count + within) = value[c];
     columns(r, base + 3 * block.count + within) = sky[r];
     // An escaped ray brought back the sky alone (PathIntegrator): its value is the sky's.
-    if (keepSky)
+    if (skyParts > 0)
       for (int c = 0; c < 3; ++c) columns(r, base + (4 + c) * block.count + within) = sky[r] > 0.0f ? value[c] : 0.0f;
+    if (skyParts > 1) {
+      const Eigen::Vector3f offSurfaces = toColorSpace(basis_.colorSpace(), bounced[r]);
+      for (int c = 0; c < 3; ++c) columns(r, base + (7 + c) * block.count + within) = offSurfaces[c];
+    }
   }
   if (!directView_.empty()) directView_.sample(view, task.id, direct, counts);
   if (samples) {
@@ -428,7 +462,7 @@ void ProbeBaker::traceLattice(const ProbeTask& task, const RotationBlocks& rotat
 }
 
 void ProbeBaker::projectLattice(const SampleColumns& columns, const RotationBlocks& rotations, float* coefficients,
-                                float* visibility, float* skyDirect) const {
+                                float* visibility, float* skyDirect, float* skyBounced) const {
   // Each coefficient is a dot product of an operator row with a probe's samples, written
   // straight to the output: the brick's operator-times-samples product, coefficient by
   // coefficient. Eigen's general product cost two and a half times as much here, most of it
@@ -449,6 +483,8 @@ void ProbeBaker::projectLattice(const SampleColumns& columns, const RotationBloc
           project(fromSamples, base + channel * block.count + within, group.functions, 1.0f, coefficients + out);
           if (skyDirect)
             project(fromSamples, base + (4 + channel) * block.count + within, group.functions, 1.0f, skyDirect + out);
+          if (skyBounced)
+            project(fromSamples, base + (7 + channel) * block.count + within, group.functions, 1.0f, skyBounced + out);
         }
       }
     }
@@ -481,7 +517,7 @@ void ProbeBaker::projectExpansion(const Eigen::MatrixXd ChannelGroup::*fromExpan
 }
 
 void ProbeBaker::projectLatticeExpansion(Eigen::MatrixXd& latticeExpansion, int p, float* coefficients, float* visibility,
-                                         float* skyDirect) const {
+                                         float* skyDirect, float* skyBounced) const {
   // The lattices' means → coefficients, through the operator the direct-view samples take.
   std::fill_n(coefficients, std::size_t(p) * coefficientsPerProbe_, 0.0f);
   latticeExpansion.middleCols(3 * p, p) *= visibilityScale();
@@ -489,6 +525,10 @@ void ProbeBaker::projectLatticeExpansion(Eigen::MatrixXd& latticeExpansion, int 
   if (skyDirect) {
     std::fill_n(skyDirect, std::size_t(p) * coefficientsPerProbe_, 0.0f);
     projectExpansion(&ChannelGroup::fromDirect, latticeExpansion.middleCols(4 * p, 3 * p), p, skyDirect, false);
+  }
+  if (skyBounced) {
+    std::fill_n(skyBounced, std::size_t(p) * coefficientsPerProbe_, 0.0f);
+    projectExpansion(&ChannelGroup::fromDirect, latticeExpansion.middleCols(7 * p, 3 * p), p, skyBounced, false);
   }
   const Eigen::MatrixXd seen = groups_[0].fromDirect * latticeExpansion.middleCols(3 * p, p);
   for (int q = 0; q < p; ++q)
@@ -514,15 +554,23 @@ void ProbeBaker::constrainNonNegative(int p, float* coefficients, float* visibil
   for (int q = 0; q < p; ++q) constrain(groups_[0], visibility + std::size_t(q) * visibilityPerProbe_);
 }
 
+int ProbeBaker::skyPartsKept(const float* skyDirect, const float* skyBounced) const {
+  if (skyDirect && !keepsSkyDirect_) throw std::logic_error("ProbeBaker::bake: this bake keeps no directly seen sky");
+  if (skyBounced && (!keepsSkyBounced_ || !skyDirect))
+    throw std::logic_error("ProbeBaker::bake: the sky's light off surfaces is kept with the directly seen sky, where "
+                           "paths reflect");
+  return skyBounced ? 2 : skyDirect ? 1 : 0;
+}
+
 void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, float* visibility, RayCounts* counts,
                       std::vector<ProbeSamples>* samples, RoundTally* tally,
-                      const DistanceMomentsOutput& distances, float* skyDirect) const {
+                      const DistanceMomentsOutput& distances, float* skyDirect, float* skyBounced) const {
   const int p = int(tasks.size());
   const bool adaptive = settings_.convergence.adaptive();
-  if (skyDirect && !keepsSkyDirect_) throw std::logic_error("ProbeBaker::bake: this bake keeps no directly seen sky");
-  const bool keepSky = skyDirect != nullptr;
+  const int skyParts = skyPartsKept(skyDirect, skyBounced);
+  const bool keepSky = skyParts > 0;
   if (samples) samples->assign(p, {});
-  const RotationBlocks rotations(tasks, keepSky);
+  const RotationBlocks rotations(tasks, skyParts);
   // Kept from brick to brick on each thread: a brick's samples are megabytes.
   thread_local ScratchBuffer<float> sampleStore;
   const int columnRays = adaptive ? 0 : settings_.rays;
@@ -533,8 +581,8 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
   ArrivalExpansion directArrivals(*directExpansion_, directView_.empty() ? 0 : p);
   ArrivalExpansion skyArrivals(*directExpansion_, keepSky && directView_.samplesSky() ? p : 0);
   // Adaptive convergence: the lattices' expansion per probe (SH, or for radiance the basis's
-  // moments), of the three channels, of sky visibility and of the directly seen sky's channels
-  // (count × 4p or 7p, channel-major like directArrivals).
+  // moments), of the three channels, of sky visibility and of the kept parts of the sky's
+  // channels (count × (4 + 3 parts)p, channel-major like directArrivals).
   Eigen::MatrixXd latticeExpansion;
   if (adaptive) latticeExpansion.setZero(directExpansion_->count(), rotations.width * p);
 
@@ -558,7 +606,7 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
         DistanceMomentsAccumulator* probeMoments = moments ? &*moments : nullptr;
         if (probeMoments) probeMoments->reset();
         if (adaptive) {
-          const Rounds rounds = traceRounds(task, lights, &direct, latticeExpansion, taskIndex, p, keepSky,
+          const Rounds rounds = traceRounds(task, lights, &direct, latticeExpansion, taskIndex, p, skyParts,
                                             &rangeCounts, probeSamples, probeMoments);
           rangeTally.add(rounds.rays, !rounds.converged);
         } else {
@@ -583,9 +631,9 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
 
   const auto projectionStart = std::chrono::steady_clock::now();
   if (adaptive)
-    projectLatticeExpansion(latticeExpansion, p, coefficients, visibility, skyDirect);
+    projectLatticeExpansion(latticeExpansion, p, coefficients, visibility, skyDirect, skyBounced);
   else
-    projectLattice(columns, rotations, coefficients, visibility, skyDirect);
+    projectLattice(columns, rotations, coefficients, visibility, skyDirect, skyBounced);
   if (punctualArrivals.any) projectExpansion(&ChannelGroup::fromPunctual, punctualArrivals.values, p, coefficients, true);
   if (directArrivals.any) projectExpansion(&ChannelGroup::fromDirect, directArrivals.values, p, coefficients, true);
   if (skyArrivals.any) projectExpansion(&ChannelGroup::fromDirect, skyArrivals.values, p, skyDirect, true);

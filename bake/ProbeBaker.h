@@ -132,6 +132,9 @@ class ProbeBaker {
   // Whether bake() can keep each probe's directly seen sky apart (its `skyDirect`): when the sky
   // lights the bake, and the coefficients are linear in the samples (not the non-negative fit).
   bool keepsSkyDirect() const { return keepsSkyDirect_; }
+  // Whether it can keep apart, too, the sky's light off surfaces (its `skyBounced`): when it keeps
+  // the directly seen sky and paths reflect.
+  bool keepsSkyBounced() const { return keepsSkyBounced_; }
   int rotations() const { return int(directions_.size()); }
   const std::vector<Eigen::Vector3f>& directions(int rotation) const { return directions_[rotation]; }
   int shOrder() const { return shOrder_; }
@@ -146,10 +149,13 @@ class ProbeBaker {
   // from its lattice rays (no ray is traced for them); `skyDirect`, when given (keepsSkyDirect()),
   // receives tasks.size() × coefficientsPerProbe(): the coefficients of the sky alone as the
   // probe saw it directly, the lattice's escaped rays and the direct view's sky samples, by the
-  // same projection, so that coefficients − skyDirect is the rest of the light.
+  // same projection, so that coefficients − skyDirect is the rest of the light. `skyBounced`,
+  // when given with it (keepsSkyBounced()), receives as many: the coefficients of the sky's light
+  // that reached the probe off surfaces (PathIntegrator's skyBounced), the same way.
   void bake(const std::vector<ProbeTask>& tasks, float* coefficients, float* visibility, RayCounts* counts,
             std::vector<ProbeSamples>* samples = nullptr, RoundTally* tally = nullptr,
-            const DistanceMomentsOutput& distances = {}, float* skyDirect = nullptr) const;
+            const DistanceMomentsOutput& distances = {}, float* skyDirect = nullptr,
+            float* skyBounced = nullptr) const;
 
  private:
   struct ChannelGroup;
@@ -167,28 +173,32 @@ class ProbeBaker {
   // One probe's rounds, until it converges: its lattices' radiance is summed as SH into
   // `latticeExpansion` (column c·batchSize + taskIndex for channel c, 3 for sky visibility), its
   // direct-view samples into `direct`, both as means over all its rays; and into `samples`
-  // when given. With `keepSky`, columns (4 + c)·batchSize + taskIndex sum channel c of the rays
-  // that escaped.
+  // when given. With `skyParts` 1 or 2, columns (4 + c)·batchSize + taskIndex sum channel c of
+  // the rays that escaped; with 2, columns (7 + c)·batchSize + taskIndex the sky's light off
+  // surfaces.
   Rounds traceRounds(const ProbeTask& task, const std::vector<PunctualAtProbe::Arrival>& lights,
                      std::vector<PunctualAtProbe::Arrival>* direct, Eigen::MatrixXd& latticeExpansion, int taskIndex,
-                     int batchSize, bool keepSky, RayCounts* counts, ProbeSamples* samples,
+                     int batchSize, int skyParts, RayCounts* counts, ProbeSamples* samples,
                      DistanceMomentsAccumulator* distances) const;
   void fitRoundsByLeastSquares(const Eigen::MatrixXd& sampledGram, Eigen::MatrixXd& latticeExpansion, int taskIndex,
-                               int batchSize, bool keepSky) const;
+                               int batchSize, int skyParts) const;
   // The probe's fixed lattice, traced into its columns, with its direct-view samples.
   void traceLattice(const ProbeTask& task, const RotationBlocks& rotations, int s, SampleColumns& columns,
                     std::vector<PunctualAtProbe::Arrival>* direct, RayCounts* counts, ProbeSamples* samples,
                     DistanceMomentsAccumulator* distances) const;
   void projectLattice(const SampleColumns& columns, const RotationBlocks& rotations, float* coefficients,
-                      float* visibility, float* skyDirect) const;
+                      float* visibility, float* skyDirect, float* skyBounced) const;
   void projectLatticeExpansion(Eigen::MatrixXd& latticeExpansion, int p, float* coefficients, float* visibility,
-                               float* skyDirect) const;
+                               float* skyDirect, float* skyBounced) const;
   // Coefficients of arrivals expanded in an expansion's functions (count × 3p) through each
   // group's operator `fromExpansion`, added to or written over `coefficients`.
   void projectExpansion(const Eigen::MatrixXd ChannelGroup::*fromExpansion,
                         const Eigen::Ref<const Eigen::MatrixXd>& expansion, int p, float* coefficients,
                         bool accumulate) const;
   void constrainNonNegative(int p, float* coefficients, float* visibility) const;
+  // How many parts of the sky bake() keeps apart: 0, 1 (seen directly), 2 (and off surfaces);
+  // std::logic_error for a part this bake cannot keep.
+  int skyPartsKept(const float* skyDirect, const float* skyBounced) const;
   // Sky visibility's factor after the projection: 1/π turns irradiance of V into its cosine-weighted mean.
   double visibilityScale() const {
     return settings_.projection.signal == StoredSignal::Radiance ? 1.0 : 1.0 / M_PI;
@@ -212,7 +222,7 @@ class ProbeBaker {
   std::vector<ChannelGroup> groups_;
   int coefficientsPerProbe_ = 0;
   int visibilityPerProbe_ = 0;
-  bool keepsSkyDirect_ = false;
+  bool keepsSkyDirect_ = false, keepsSkyBounced_ = false;
   int shOrder_ = 0;
   double condition_ = 0.0;
   mutable std::atomic<std::int64_t> projectionNanoseconds_{0};

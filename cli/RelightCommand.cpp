@@ -47,6 +47,7 @@ int runRelightCommand(int argc, char** argv) {
                                   {"other_lights", r.otherLights},
                                   {"visibility", r.visibility},
                                   {"old_sky_removed", r.oldSkyRemoved},
+                                  {"bounce_scaled", r.bounceScaled},
                                   {"changes", r.changes},
                                   {"keeps", r.keeps},
                                   {"seconds", r.seconds}}

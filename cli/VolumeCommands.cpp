@@ -175,7 +175,7 @@ int runInspectCommand(int argc, char** argv) {
     const std::unique_ptr<Basis> basis = basisOf(v);
     const ProbeGrid& g = v.grid;
     nlohmann::json grids = nlohmann::json::array();
-    for (const VolumeGrid& grid : volumeGrids(*basis, v.visibilityPerProbe, v.hasProbeStates(), v.distanceMap, v.keepsSkyDirect)) {
+    for (const VolumeGrid& grid : volumeGrids(*basis, v)) {
       float lo = std::numeric_limits<float>::infinity(), hi = -lo;
       for (const Volume& level : volume.levels)
         for (std::int64_t row = 0; row < level.rows.count(level.grid); ++row) {

@@ -28,18 +28,19 @@ constexpr const char* kFormatName = kExrFormatName;
 
 std::string sliceName(int k) { return fmt::format("z{:04}.exr", k); }
 
-// The smallest power of two that brings every coefficient (and its directly seen sky's part)
-// within half's range.
+// The smallest power of two that brings every coefficient (and the sky's parts of them) within
+// half's range.
 double coefficientScale(const Volume& v, ExrPrecision precision) {
   if (precision == ExrPrecision::Float) return 1.0;
   double largest = 0.0;
-  for (const std::vector<float>* values : {&v.coefficients, &v.skyDirect})
+  for (const std::vector<float>* values : {&v.coefficients, &v.skyDirect, &v.skyBounced})
     for (float c : *values) largest = std::max(largest, double(std::abs(c)));
   return largest <= kHalfMax ? 1.0 : std::exp2(std::ceil(std::log2(largest / kHalfMax)));
 }
 
 bool scaled(const VolumeGrid& g) {
-  return g.kind == VolumeGrid::Kind::Coefficients || g.kind == VolumeGrid::Kind::SkyDirect;
+  return g.kind == VolumeGrid::Kind::Coefficients || g.kind == VolumeGrid::Kind::SkyDirect ||
+         g.kind == VolumeGrid::Kind::SkyBounced;
 }
 bool alwaysFloat(const VolumeGrid& g) {
   return g.kind == VolumeGrid::Kind::ProbeState || g.kind == VolumeGrid::Kind::ProbeOffset;
@@ -116,8 +117,7 @@ bool isExrSliceDirectory(const std::string& path) { return directoryHolds(path, 
 void writeSliceSet(const Volume& volume, const Basis& basis, const std::string& directory, ExrPrecision precision,
                    const BrickAtlas* atlas, const nlohmann::json& extra) {
   requireFiniteVolume(volume);
-  const std::vector<VolumeGrid> grids = volumeGrids(basis, volume.visibilityPerProbe, volume.hasProbeStates(),
-                                                    volume.distanceMap, volume.keepsSkyDirect);
+  const std::vector<VolumeGrid> grids = volumeGrids(basis, volume);
   const double scale = coefficientScale(volume, precision);
   const PixelType storage = precision == ExrPrecision::Half ? PixelType::Half : PixelType::Float;
   // An atlas holds exactly its bricks; the grid's own layout the bricks a file keeps.
@@ -331,7 +331,8 @@ Volume readSliceSet(const std::filesystem::path& dir, const nlohmann::json& m, c
 
   const std::unique_ptr<Basis> basis = makeBasis(volume.basisName);
   const std::vector<VolumeGrid> grids = volumeGrids(*basis, volume.visibilityPerProbe, manifest.header.hasProbeStates,
-                                                    volume.distanceMap, volume.keepsSkyDirect);
+                                                    volume.distanceMap, volume.keepsSkyDirect,
+                                                    volume.keepsSkyBounced);
   std::vector<float> pixels;
   for (int k = 0; k < depth; ++k) readSlice(dir, manifest, k, manifestPath, grids, pixels, volume);
   requireFiniteValues(volume, path);

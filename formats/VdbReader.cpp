@@ -68,7 +68,7 @@ void readLevelGrids(openvdb::io::File& file, const std::string& path, const std:
   const std::unique_ptr<Basis> basis = makeBasis(volume.basisName);
   const ProbeGrid& g = volume.grid;
   for (const VolumeGrid& spec : volumeGrids(*basis, volume.visibilityPerProbe, hasProbeStates, volume.distanceMap,
-                                                   volume.keepsSkyDirect)) {
+                                                   volume.keepsSkyDirect, volume.keepsSkyBounced)) {
     const std::string name = prefix + spec.name;
     if (spec.kind == VolumeGrid::Kind::ProbeState)
       readVoxels<openvdb::Int32Grid>(file, name, g, path, [&](std::int64_t p, int state) {

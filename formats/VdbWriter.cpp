@@ -120,7 +120,7 @@ void writeLevels(const std::vector<LevelGrids>& levels, const Basis& basis, cons
   openvdb::initialize();
   const Volume& first = *levels.front().volume;
   const std::vector<VolumeGrid> specs = volumeGrids(basis, first.visibilityPerProbe, hasProbeStates, first.distanceMap,
-                                                    first.keepsSkyDirect);
+                                                    first.keepsSkyDirect, first.keepsSkyBounced);
   const auto gridAt = [&](std::int32_t index) {
     const LevelGrids& level = levels[std::size_t(index) / specs.size()];
     const Volume& volume = *level.volume;

@@ -106,10 +106,11 @@ void requireFiniteValues(const Volume& v, const std::string& path) {
     if (!std::isfinite(v.coefficients[i]))
       throw InputError(fmt::format("{}: probe {} has a non-finite coefficient", path,
                                    v.rows.probeAt(v.grid, std::int64_t(i / v.coefficientsPerProbe))));
-  for (std::size_t i = 0; i < v.skyDirect.size(); ++i)
-    if (!std::isfinite(v.skyDirect[i]))
-      throw InputError(fmt::format("{}: probe {} has a non-finite coefficient in its sky_direct grids", path,
-                                   v.rows.probeAt(v.grid, std::int64_t(i / v.coefficientsPerProbe))));
+  for (const auto& [values, prefix] : {std::pair{&v.skyDirect, "sky_direct"}, std::pair{&v.skyBounced, "sky_bounced"}})
+    for (std::size_t i = 0; i < values->size(); ++i)
+      if (!std::isfinite((*values)[i]))
+        throw InputError(fmt::format("{}: probe {} has a non-finite coefficient in its {} grids", path,
+                                     v.rows.probeAt(v.grid, std::int64_t(i / v.coefficientsPerProbe)), prefix));
   for (std::size_t i = 0; i < v.visibility.size(); ++i)
     if (!std::isfinite(v.visibility[i]))
       throw InputError(fmt::format("{}: probe {} has a non-finite visibility value", path,

@@ -30,10 +30,11 @@ void addCoefficientGrids(const Basis& basis, VolumeGrid::Kind kind, const std::s
 }  // namespace
 
 std::vector<VolumeGrid> volumeGrids(const Basis& basis, int visibilityPerProbe, bool hasProbeStates,
-                                    const DistanceMapLayout& distanceMap, bool skyDirect) {
+                                    const DistanceMapLayout& distanceMap, bool skyDirect, bool skyBounced) {
   std::vector<VolumeGrid> grids;
   addCoefficientGrids(basis, VolumeGrid::Kind::Coefficients, "", grids);
   if (skyDirect) addCoefficientGrids(basis, VolumeGrid::Kind::SkyDirect, "sky_direct_", grids);
+  if (skyBounced) addCoefficientGrids(basis, VolumeGrid::Kind::SkyBounced, "sky_bounced_", grids);
   for (int f = 0; f < visibilityPerProbe; ++f)
     grids.push_back({fmt::format("visibility_{:02}", f), VolumeGrid::Kind::Visibility, 1, {f, 0, 0}});
   const int moments = distanceMap.size > 0 ? 2 * distanceMap.texels() : 0;
@@ -49,6 +50,11 @@ std::vector<VolumeGrid> volumeGrids(const Basis& basis, int visibilityPerProbe, 
   return grids;
 }
 
+std::vector<VolumeGrid> volumeGrids(const Basis& basis, const Volume& volume) {
+  return volumeGrids(basis, volume.visibilityPerProbe, volume.hasProbeStates(), volume.distanceMap,
+                     volume.keepsSkyDirect, volume.keepsSkyBounced);
+}
+
 std::string componentName(const VolumeGrid& grid, int component) {
   if (grid.components == 1) return grid.name;
   static const char* rgb[3] = {"R", "G", "B"};
@@ -62,6 +68,7 @@ float gridValue(const Volume& v, const VolumeGrid& grid, int component, std::int
   switch (grid.kind) {
     case VolumeGrid::Kind::Coefficients: return v.coefficients[row * v.coefficientsPerProbe + grid.index[component]];
     case VolumeGrid::Kind::SkyDirect: return v.skyDirect[row * v.coefficientsPerProbe + grid.index[component]];
+    case VolumeGrid::Kind::SkyBounced: return v.skyBounced[row * v.coefficientsPerProbe + grid.index[component]];
     case VolumeGrid::Kind::Visibility: return v.visibility[row * v.visibilityPerProbe + grid.index[component]];
     case VolumeGrid::Kind::DistanceMoments:
     case VolumeGrid::Kind::SkyVisibilityMap:
@@ -78,6 +85,7 @@ bool setGridValue(Volume& v, const VolumeGrid& grid, int component, std::int64_t
   switch (grid.kind) {
     case VolumeGrid::Kind::Coefficients: v.coefficients[row * v.coefficientsPerProbe + grid.index[component]] = value; break;
     case VolumeGrid::Kind::SkyDirect: v.skyDirect[row * v.coefficientsPerProbe + grid.index[component]] = value; break;
+    case VolumeGrid::Kind::SkyBounced: v.skyBounced[row * v.coefficientsPerProbe + grid.index[component]] = value; break;
     case VolumeGrid::Kind::Visibility: v.visibility[row * v.visibilityPerProbe + grid.index[component]] = value; break;
     case VolumeGrid::Kind::DistanceMoments:
     case VolumeGrid::Kind::SkyVisibilityMap:

@@ -13,7 +13,8 @@ namespace baker {
 //    one RGB grid "rgb_NN"; otherwise each channel's function NN is a scalar grid named after
 //    the channel, e.g. "Y_NN", "Co_NN", "Cg_NN";
 //  - the directly seen sky's part of the coefficients (Volume::skyDirect), when the volume keeps
-//    it: the same grids prefixed "sky_direct_", e.g. "sky_direct_rgb_NN";
+//    it: the same grids prefixed "sky_direct_", e.g. "sky_direct_rgb_NN"; the sky's part off
+//    surfaces (Volume::skyBounced) likewise, prefixed "sky_bounced_";
 //  - sky visibility, function NN of channel 0's set: a scalar grid "visibility_NN";
 //  - distance moments, value NNN of the probe's distance map (volume/DistanceMoments.h): a scalar
 //    grid "distance_moments_NNN"; when the map carries the sky's, texel NNN's escaped share is
@@ -22,17 +23,28 @@ namespace baker {
 //    geometry) and "probe_offset" (world-space move from the grid position, three components).
 struct VolumeGrid {
   // DistanceMoments and SkyVisibilityMap both index the probe's distance-map values.
-  enum class Kind { Coefficients, SkyDirect, Visibility, DistanceMoments, SkyVisibilityMap, ProbeState, ProbeOffset };
+  enum class Kind {
+    Coefficients,
+    SkyDirect,
+    SkyBounced,
+    Visibility,
+    DistanceMoments,
+    SkyVisibilityMap,
+    ProbeState,
+    ProbeOffset
+  };
   std::string name;
   Kind kind = Kind::Coefficients;
   int components = 1;  // 1 or 3
-  // Where component c lives in the probe's coefficients (Coefficients, SkyDirect), visibility values
+  // Where component c lives in the probe's coefficients (Coefficients, SkyDirect, SkyBounced), visibility values
   // (Visibility) or distance moments (DistanceMoments); unused for the probe grids.
   int index[3] = {0, 0, 0};
 };
 
 std::vector<VolumeGrid> volumeGrids(const Basis& basis, int visibilityPerProbe, bool hasProbeStates,
-                                    const DistanceMapLayout& distanceMap, bool skyDirect);
+                                    const DistanceMapLayout& distanceMap, bool skyDirect, bool skyBounced);
+// The grids `volume` holds (its probe states as Volume::hasProbeStates says).
+std::vector<VolumeGrid> volumeGrids(const Basis& basis, const Volume& volume);
 
 // Names of a grid's components where a format stores them one by one (EXR channels):
 // "rgb_00.R", "probe_offset.X", or the grid's own name for a scalar grid.

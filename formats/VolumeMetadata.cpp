@@ -19,6 +19,7 @@ const char* kindName(VolumeGrid::Kind kind) {
   switch (kind) {
     case VolumeGrid::Kind::Coefficients: return "irradiance_coefficients";
     case VolumeGrid::Kind::SkyDirect: return "sky_direct_coefficients";
+    case VolumeGrid::Kind::SkyBounced: return "sky_bounced_coefficients";
     case VolumeGrid::Kind::Visibility: return "sky_visibility_coefficients";
     case VolumeGrid::Kind::DistanceMoments: return "distance_moments";
     case VolumeGrid::Kind::SkyVisibilityMap: return "sky_visibility_map";
@@ -38,10 +39,11 @@ std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume
                                                                     bool hasProbeStates) {
   nlohmann::json layout = nlohmann::json::array();
   for (const VolumeGrid& g :
-       volumeGrids(basis, volume.visibilityPerProbe, hasProbeStates, volume.distanceMap, volume.keepsSkyDirect)) {
+       volumeGrids(basis, volume.visibilityPerProbe, hasProbeStates, volume.distanceMap, volume.keepsSkyDirect,
+                   volume.keepsSkyBounced)) {
     nlohmann::json entry = {{"name", g.name}, {"kind", kindName(g.kind)}, {"components", g.components}};
     if (g.kind == VolumeGrid::Kind::Coefficients || g.kind == VolumeGrid::Kind::SkyDirect ||
-        g.kind == VolumeGrid::Kind::Visibility ||
+        g.kind == VolumeGrid::Kind::SkyBounced || g.kind == VolumeGrid::Kind::Visibility ||
         g.kind == VolumeGrid::Kind::DistanceMoments || g.kind == VolumeGrid::Kind::SkyVisibilityMap)
       entry["index"] = std::vector<int>(g.index, g.index + g.components);
     layout.push_back(entry);
@@ -77,6 +79,11 @@ std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume
                     "the sky seen directly from the probe, along the rays that escaped and the sky's importance "
                     "samples; coefficients minus sky_direct is the light that does not come straight from the sky "
                     "(lamps, emission, and the sky's light off surfaces), which stays when the sky is swapped"});
+  if (volume.keepsSkyBounced)
+    meta.push_back({kSkyBouncedKey,
+                    "grids sky_bounced_*: the part of the coefficients (same functions, channels and units) that is "
+                    "the sky's light off surfaces, the paths that reflected before the sky lit them; coefficients "
+                    "minus sky_direct minus sky_bounced is the light of lamps and emission alone"});
   for (const auto& [key, value] : volume.settings) meta.push_back({"baker.setting." + key, value});
   if (volume.shard) {
     meta.push_back({"baker.shard", shardName(*volume.shard)});
@@ -197,6 +204,7 @@ nlohmann::json skyMetadata(const SkyRadiance& sky) {
 
 void readSkyDirect(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume) {
   volume.keepsSkyDirect = metadataValue(metadata, kSkyDirectKey) != nullptr;
+  volume.keepsSkyBounced = volume.keepsSkyDirect && metadataValue(metadata, kSkyBouncedKey) != nullptr;
 }
 
 void readSky(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume, const std::string& path) {

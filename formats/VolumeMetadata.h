@@ -59,7 +59,11 @@ void readSky(const std::vector<std::pair<std::string, std::string>>& metadata, V
 // A volume that keeps its directly seen sky apart (Volume::skyDirect, grids "sky_direct_*") says
 // so, and what the grids mean, under this key.
 constexpr const char* kSkyDirectKey = "baker.sky_direct";
-// Sets volume.keepsSkyDirect from that key's presence.
+// One that also keeps the sky's light off surfaces apart (Volume::skyBounced, grids
+// "sky_bounced_*") says so under this key.
+constexpr const char* kSkyBouncedKey = "baker.sky_bounced";
+// Sets volume.keepsSkyDirect and keepsSkyBounced from those keys' presence (the second only with
+// the first).
 void readSkyDirect(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume);
 
 // Recovers volume.settings from "baker.setting.*" keys.

@@ -6,10 +6,12 @@
 #include <atomic>
 #include <algorithm>
 #include <chrono>
+#include <memory>
 #include <optional>
 #include <utility>
 
 #include "bake/SkyProjection.h"
+#include "basis/BasisRegistry.h"
 #include "basis/StoredSignal.h"
 #include "common/Error.h"
 #include "common/Timing.h"
@@ -21,6 +23,11 @@ namespace baker {
 namespace {
 
 constexpr double kConcentratedSolidAngle = 0.01, kConcentratedShare = 0.25;
+// How much of the level's mean flux is added to a probe's own before their ratio scales its light
+// off surfaces: a probe that sees little sky takes the level's ratio, one that sees much its own.
+// Measured on the report's scenes, 1 and 0.1 are within 0-5 points of the level of each other
+// (docs/RELIGHTING.md).
+constexpr double kLevelShare = 1.0;
 
 std::string setting(const Volume& volume, const std::string& key, const std::string& fallback) {
   const auto it = volume.settings.find(key);
@@ -83,17 +90,89 @@ Eigen::VectorXd visibilityOf(const Volume& level, const SkyTransfer& transfer, s
       .cast<double>();
 }
 
+// How much of each sky a probe sees directly, per RGB channel: ∫ V(ω) L(ω) dω through its map, up
+// to a constant factor (the SH band-0 coefficient of V·L, SkyTransfer's own integral). The light
+// the sky sends off surfaces is scaled by the ratio new / old: the surfaces around a probe see
+// about the sky it sees (through the same window, under the same open sky).
+class SkyFlux {
+ public:
+  SkyFlux(const DistanceMapLayout& map, const SkyRadiance& before, const SkyRadiance& after)
+      : basis_(makeBasis("sh-l1")),
+        transfer_(*basis_, StoredSignal::Radiance, BandWindow{}, map),
+        before_(transfer_.operators(SkyRadiance{}, before)),
+        after_(transfer_.operators(SkyRadiance{}, after)) {}
+
+  // Per channel, the flux of the old sky and of the new one the map `v` lets through.
+  std::pair<Eigen::Vector3d, Eigen::Vector3d> seen(const Eigen::VectorXd& v) const {
+    Eigen::Vector3d old, now;
+    for (int c = 0; c < 3; ++c) {
+      old[c] = before_[std::size_t(c)].row(0).dot(v);
+      now[c] = after_[std::size_t(c)].row(0).dot(v);
+    }
+    return {old, now};
+  }
+
+ private:
+  std::unique_ptr<Basis> basis_;
+  SkyTransfer transfer_;
+  std::vector<Eigen::MatrixXd> before_, after_;
+};
+
+// Per probe row of `level`, the factor its light off surfaces takes, per RGB channel: the ratio of
+// the new sky's flux through its map to the old one's, with kLevelShare times the level's mean
+// over the probes baked in place or moved (not those filled from neighbours) added, so that a
+// probe that sees no sky takes the level's ratio. The ratios of relightings A → B → C multiply to
+// A → C's: each one's numerator is the next one's denominator. For a basis in YCoCg, whose chroma
+// has functions of its own, one factor for all three: the luminance's.
+std::vector<Eigen::Vector3d> bounceScales(const Volume& level, const SkyTransfer& transfer, const SkyFlux& flux,
+                                          ColorSpace space) {
+  const std::int64_t rows = level.rows.count(level.grid);
+  std::vector<std::pair<Eigen::Vector3d, Eigen::Vector3d>> seen(static_cast<std::size_t>(rows));
+  tbb::parallel_for(std::int64_t(0), rows, [&](std::int64_t row) {
+    seen[std::size_t(row)] = flux.seen(visibilityOf(level, transfer, row));
+  });
+  Eigen::Vector3d meanOld = Eigen::Vector3d::Zero(), meanNew = Eigen::Vector3d::Zero();
+  std::int64_t baked = 0;
+  for (std::int64_t row = 0; row < rows; ++row) {
+    if (!level.states.empty() && level.states[std::size_t(row)] == ProbeState::Invalid) continue;
+    meanOld += seen[std::size_t(row)].first;
+    meanNew += seen[std::size_t(row)].second;
+    ++baked;
+  }
+  if (baked > 0) {
+    meanOld /= double(baked);
+    meanNew /= double(baked);
+  }
+  std::vector<Eigen::Vector3d> scales(static_cast<std::size_t>(rows), Eigen::Vector3d::Ones());
+  const Eigen::Vector3d luminance(0.25, 0.5, 0.25);
+  for (std::int64_t row = 0; row < rows; ++row) {
+    const Eigen::Vector3d old = seen[std::size_t(row)].first + kLevelShare * meanOld;
+    const Eigen::Vector3d now = seen[std::size_t(row)].second + kLevelShare * meanNew;
+    Eigen::Vector3d& scale = scales[std::size_t(row)];
+    if (space == ColorSpace::YCoCg) {
+      const double before = luminance.dot(old);
+      scale.setConstant(before > 0.0 ? luminance.dot(now) / before : 1.0);
+    } else {
+      for (int c = 0; c < 3; ++c) scale[c] = old[c] > 0.0 ? now[c] / old[c] : 1.0;
+    }
+  }
+  return scales;
+}
+
 // With the level's directly seen sky kept apart (Volume::skyDirect), `operators` take a black sky
 // to the new one: that part is replaced by what they give. Without it they take the old sky to
-// the new one, and their result is added.
+// the new one, and their result is added. With the sky's light off surfaces kept apart too
+// (Volume::skyBounced) and `bounce` scales, that part is scaled by them.
 void relightLevel(Volume& level, const SkyTransfer& transfer, const std::vector<Eigen::MatrixXd>& operators,
-                  const Basis& basis, const std::string& name) {
+                  const std::vector<Eigen::Vector3d>* bounce, const Basis& basis, const std::string& name) {
   const std::int64_t rows = level.rows.count(level.grid);
   std::atomic<bool> finite{true};
   tbb::parallel_for(std::int64_t(0), rows, [&](std::int64_t row) {
     const Eigen::VectorXd v = visibilityOf(level, transfer, row);
-    float* coefficients = level.coefficients.data() + row * level.coefficientsPerProbe;
-    float* skyDirect = level.keepsSkyDirect ? level.skyDirect.data() + row * level.coefficientsPerProbe : nullptr;
+    const std::int64_t first = row * level.coefficientsPerProbe;
+    float* coefficients = level.coefficients.data() + first;
+    float* skyDirect = level.keepsSkyDirect ? level.skyDirect.data() + first : nullptr;
+    float* skyBounced = bounce && level.keepsSkyBounced ? level.skyBounced.data() + first : nullptr;
     for (int c = 0; c < 3; ++c) {
       const int offset = basis.coefficientOffset(c), count = basis.coefficientCount(c);
       Eigen::Map<Eigen::VectorXf> channel(coefficients + offset, count);
@@ -104,6 +183,13 @@ void relightLevel(Volume& level, const SkyTransfer& transfer, const std::vector<
         relit -= seen.cast<double>();
         seen = added.cast<float>();
         if (!seen.allFinite()) finite = false;
+      }
+      if (skyBounced) {
+        Eigen::Map<Eigen::VectorXf> offSurfaces(skyBounced + offset, count);
+        const Eigen::VectorXd scaled = offSurfaces.cast<double>() * (*bounce)[std::size_t(row)][c];
+        relit += scaled - offSurfaces.cast<double>();
+        offSurfaces = scaled.cast<float>();
+        if (!offSurfaces.allFinite()) finite = false;
       }
       channel = relit.cast<float>();
       if (!channel.allFinite()) finite = false;
@@ -116,11 +202,16 @@ void relightLevel(Volume& level, const SkyTransfer& transfer, const std::vector<
   if (transfer.readsMap() && !level.shard && !level.states.empty()) {
     fillInvalidProbes(level.grid, level.rows, level.states, level.coefficientsPerProbe, level.coefficients);
     fillInvalidProbes(level.grid, level.rows, level.states, level.skyDirectPerProbe(), level.skyDirect);
+    fillInvalidProbes(level.grid, level.rows, level.states, level.skyBouncedPerProbe(), level.skyBounced);
   }
 }
 
 bool keepsSkyDirect(const AdaptiveVolume& volume) {
   return std::all_of(volume.levels.begin(), volume.levels.end(), [](const Volume& v) { return v.keepsSkyDirect; });
+}
+
+bool keepsSkyBounced(const AdaptiveVolume& volume) {
+  return std::all_of(volume.levels.begin(), volume.levels.end(), [](const Volume& v) { return v.keepsSkyBounced; });
 }
 
 }  // namespace
@@ -141,7 +232,8 @@ SkyChange relightVolume(AdaptiveVolume& volume, const Basis& basis, const SkyRad
   if (first.sky->rgb == sky.rgb) {
     if (!first.settings.count("baked_sky")) first.settings["baked_sky"] = setting(first, "sky", "none");
     first.settings["sky"] = description;
-    return {"unchanged: the new sky is the one the volume holds", "nothing to take away: the same sky"};
+    return {"unchanged: the new sky is the one the volume holds", "nothing to take away: the same sky",
+            keepsSkyBounced(volume)};
   }
   const StoredSignal signal = storedSignalOf(first.settings);
   // Every level reads V the same way: adaptive levels hold no maps.
@@ -149,19 +241,31 @@ SkyChange relightVolume(AdaptiveVolume& volume, const Basis& basis, const SkyRad
                              volume.levels.size() == 1 ? first.distanceMap : DistanceMapLayout{0, 0.0});
   const bool exact = keepsSkyDirect(volume);
   const std::vector<Eigen::MatrixXd> operators = transfer.operators(exact ? SkyRadiance{} : *first.sky, sky);
+  // The light off surfaces is scaled by what each probe's map sees of both skies; without maps
+  // (adaptive levels, --distance-map 0) it is kept as baked.
+  const bool scalesBounce = exact && transfer.readsMap() && keepsSkyBounced(volume);
+  std::optional<SkyFlux> flux;
+  if (scalesBounce) flux.emplace(first.distanceMap, *first.sky, sky);
   for (Volume& level : volume.levels) {
     if (!exact) {
       level.keepsSkyDirect = false;
       level.skyDirect.clear();
     }
-    relightLevel(level, transfer, operators, basis, name);
+    if (!exact || !scalesBounce) {
+      level.keepsSkyBounced = false;
+      level.skyBounced.clear();
+    }
+    std::vector<Eigen::Vector3d> bounce;
+    if (scalesBounce) bounce = bounceScales(level, transfer, *flux, basis.colorSpace());
+    relightLevel(level, transfer, operators, scalesBounce ? &bounce : nullptr, basis, name);
   }
   if (!first.settings.count("baked_sky")) first.settings["baked_sky"] = setting(first, "sky", "none");
   first.settings["sky"] = description;
   first.sky = sky;
   return {transfer.visibilitySource(),
           exact ? "exactly: each probe's directly seen sky as baked (grids sky_direct_*)"
-                : "through the stored visibility, as the new sky is added (the volume keeps no sky_direct grids)"};
+                : "through the stored visibility, as the new sky is added (the volume keeps no sky_direct grids)",
+          scalesBounce};
 }
 
 DescribedSkyHarmonics skyHarmonicsOf(const SceneOptions& options, std::vector<std::string>& warnings) {
@@ -207,7 +311,11 @@ RelightReport relightVolumeFile(const RelightRequest& request) {
   report.bakedSky = volume.coarsest().settings.at("baked_sky");
   report.changes.push_back("the sky each probe sees directly: the old one taken away " + report.oldSkyRemoved +
                            "; the new one added through the stored visibility: " + report.visibility);
-  if (report.bounces > 0 && simulated(first, "bounces"))
+  report.bounceScaled = change.bounceScaled;
+  if (change.bounceScaled)
+    report.changes.push_back("the sky's light off surfaces (grids sky_bounced_*): scaled per probe and channel by the "
+                             "new sky's flux through its map over the old one's, approximately (docs/RELIGHTING.md)");
+  else if (report.bounces > 0 && simulated(first, "bounces"))
     report.keeps.push_back("light the sky sends through bounces off surfaces: as baked under " + report.bakedSky);
   if (report.otherLights)
     report.keeps.push_back("light from lamps and emissive surfaces, direct and bounced");

@@ -32,6 +32,7 @@ struct RelightReport {
   bool otherLights = false;     // whether the bake had lights besides the sky (lamps, emission)
   std::string visibility;       // how V(ω) was read (SkyTransfer::visibilitySource)
   std::string oldSkyRemoved;    // how the old sky's direct light was taken away (SkyChange)
+  bool bounceScaled = false;    // whether its light off surfaces was scaled to the new sky (SkyChange)
   std::vector<std::string> changes, keeps;  // in words, what the relit volume changes and keeps
   std::vector<std::string> warnings;        // e.g. texels of the new map that were not finite
   EngineExport engineExport;
@@ -42,6 +43,9 @@ struct RelightReport {
 struct SkyChange {
   std::string visibility;     // how V(ω) was read (SkyTransfer::visibilitySource)
   std::string oldSkyRemoved;  // exactly (from Volume::skyDirect) or through the visibility
+  // Whether the sky's light off surfaces (Volume::skyBounced) was scaled to the new sky: with
+  // skyDirect, skyBounced and distance maps; otherwise it stays as baked.
+  bool bounceScaled = false;
 };
 
 // Relights every probe of `volume` (each level) to `sky`, and records it (setting "sky":
@@ -49,6 +53,8 @@ struct SkyChange {
 // directly seen sky (Volume::skyDirect), that part is replaced by `sky` seen through the stored
 // visibility (volume/SkyTransfer.h), and kept as skyDirect, so that relit volumes relight again
 // alike; otherwise the change from the recorded sky to `sky` is added through the visibility.
+// Where it also keeps the sky's light off surfaces (Volume::skyBounced) and distance maps, that
+// part is scaled per probe by the new sky's flux through the probe's map over the old one's.
 // InputError when the volume holds no visibility or records no sky; NumericalError if a value
 // would leave single precision.
 SkyChange relightVolume(AdaptiveVolume& volume, const Basis& basis, const SkyRadiance& sky,

@@ -116,8 +116,10 @@ def report(rows, rays):
                      f"{percent(r['noise']['p99'])} | {percent(r['coefficients_only']['mean'])} | "
                      f"{percent(r['run_time']['mean'])} | "
                      f"{r['relight_seconds']:.2f} | {r['rebake_seconds']:.2f} |")
-    lines += ["", "Rows with bounces 1 include the light the sky sends off surfaces, which relighting keeps from the "
-              "old sky: the gap between a row and its bounces-0 twin is that light's change (docs/RELIGHTING.md)."]
+    lines += ["", "Rows with bounces 1 include the light the sky sends off surfaces (grids sky_bounced_*), which "
+              "`relight` scales per probe by the new sky's flux through the probe's map over the old one's: the gap "
+              "between a row and its bounces-0 twin is that estimate's error. At run time the decoders keep it as "
+              "baked (docs/RELIGHTING.md)."]
     return "\n".join(lines) + "\n"
 
 

@@ -152,9 +152,11 @@ TEST(Relight, TheCoefficientsUndoTheCosineAndTheWindow) {
   }
 }
 
-void bake(const std::string& dir, std::vector<std::string> args) {
+void bake(const std::string& dir, std::vector<std::string> args, const std::string& bounces = "0") {
   args.insert(args.begin(), test::sourcePath("data/default_room/default_room.gltf"));
-  for (const char* a : {"--bounces", "0", "--spacing", "1", "--quiet"}) args.push_back(a);
+  for (const std::string& a : {std::string("--bounces"), bounces, std::string("--spacing"), std::string("1"),
+                               std::string("--quiet")})
+    args.push_back(a);
   const test::ProcessResult run = test::runBaker(dir, args);
   ASSERT_EQ(run.exitCode, 0) << run.err;
 }
@@ -214,6 +216,67 @@ TEST(Relight, TheBakeKeepsTheSkyItSawDirectlyApart) {
       for (std::size_t i = 0; i < rest.size(); ++i) rest[i] -= lit.skyDirect[i];
       EXPECT_LT(largestDifference(rest, dark.coefficients), 2e-6f * largestMagnitude(lit.coefficients)) << what;
     }
+}
+
+// With bounces, a probe lit by the sky alone (the panel neither seen nor lighting surfaces) receives the sky's light seen directly or off
+// surfaces and nothing else: skyDirect + skyBounced must be the coefficients, for fixed lattices,
+// radiance fits and adaptive rounds. At --bounces 0 there is no light off surfaces to keep.
+TEST(Relight, TheBakeKeepsTheSkysLightOffSurfacesApart) {
+  const std::string dir = test::makeTempDir("RelightSkyBounced");
+  for (const std::vector<std::string>& way : {std::vector<std::string>{"--rays", "64"},
+                                              {"--rays", "64", "--signal", "radiance", "--basis", "ad-srbf"},
+                                              {"--quality", "draft", "--basis", "ad-ycocg"}}) {
+    std::vector<std::string> args = way;
+    args.insert(args.end(),
+                {"--env", test::sourcePath(kLowSun), "--no", "emission", "--no", "emissive-lights", "--out", "sky.vdb"});
+    bake(dir, args, "2");
+    const Volume v = readVolume(dir + "/sky.vdb");
+    ASSERT_TRUE(v.keepsSkyDirect && v.keepsSkyBounced) << way[1];
+    std::vector<float> parts = v.skyDirect;
+    for (std::size_t i = 0; i < parts.size(); ++i) parts[i] += v.skyBounced[i];
+    const float scale = largestMagnitude(v.coefficients);
+    EXPECT_LT(largestDifference(parts, v.coefficients), 2e-6f * scale) << way[1];
+    EXPECT_GT(largestMagnitude(v.skyBounced), 0.02f * scale) << way[1] << ": the room's walls light it";
+  }
+  bake(dir, {"--sky", "1,1,1", "--rays", "16", "--out", "direct.vdb"});
+  EXPECT_FALSE(readVolume(dir + "/direct.vdb").keepsSkyBounced) << "no light off surfaces at --bounces 0";
+}
+
+// A sky scaled per channel by k: every probe's flux through its map scales by k, so its light off
+// surfaces must scale by k exactly (by the luminance's ratio for a YCoCg basis, whose chroma has
+// functions of its own). And with that light, relightings A → B → C still equal A → C.
+TEST(Relight, ScalesTheSkysLightOffSurfacesToTheNewSky) {
+  const std::string dir = test::makeTempDir("RelightScaledBounce");
+  const Eigen::Vector3d from(0.5, 0.7, 0.9), k(2.0, 3.0, 1.0);
+  for (const std::string basisName : {"sh-l2", "ad-ycocg"}) {
+    bake(dir, {"--basis", basisName, "--sky", "0.5,0.7,0.9", "--rays", "64", "--out", "baked.vdb"}, "1");
+    const test::ProcessResult run = relight(dir, {"baked.vdb", "--sky", "1,2.1,0.9", "--out", "relit.vdb", "--json"});
+    ASSERT_EQ(run.exitCode, 0) << run.err;
+    EXPECT_TRUE(nlohmann::json::parse(run.out).at("bounce_scaled").get<bool>());
+    const Volume baked = readVolume(dir + "/baked.vdb"), relit = readVolume(dir + "/relit.vdb");
+    ASSERT_TRUE(relit.keepsSkyBounced);
+    const std::unique_ptr<Basis> basis = makeBasis(basisName);
+    const Eigen::Vector3d luminance(0.25, 0.5, 0.25);
+    const float largest = largestMagnitude(baked.skyBounced);
+    ASSERT_GT(largest, 0.0f);
+    for (std::int64_t row = 0; row < baked.rows.count(baked.grid); ++row)
+      for (int c = 0; c < 3; ++c) {
+        const double factor =
+            basis->colorSpace() == ColorSpace::YCoCg ? luminance.dot(k.cwiseProduct(from)) / luminance.dot(from) : k[c];
+        for (int f = 0; f < basis->coefficientCount(c); ++f) {
+          const std::size_t i = std::size_t(row * baked.coefficientsPerProbe + basis->coefficientOffset(c) + f);
+          ASSERT_NEAR(relit.skyBounced[i], factor * baked.skyBounced[i], 1e-5 * largest) << basisName << " " << row;
+        }
+      }
+  }
+  bake(dir, {"--env", test::sourcePath(kLowSun), "--rays", "64", "--out", "sun.vdb"}, "1");
+  ASSERT_EQ(relight(dir, {"sun.vdb", "--sky", "0.3,0.4,0.5", "--out", "there.vdb"}).exitCode, 0);
+  ASSERT_EQ(relight(dir, {"there.vdb", "--sky", "0.9,0.2,0.1", "--out", "onward.vdb"}).exitCode, 0);
+  ASSERT_EQ(relight(dir, {"sun.vdb", "--sky", "0.9,0.2,0.1", "--out", "straight.vdb"}).exitCode, 0);
+  const Volume onward = readVolume(dir + "/onward.vdb"), straight = readVolume(dir + "/straight.vdb");
+  const float largest = largestMagnitude(straight.coefficients);
+  EXPECT_LT(largestDifference(onward.coefficients, straight.coefficients), 1e-5f * largest);
+  EXPECT_LT(largestDifference(onward.skyBounced, straight.skyBounced), 1e-5f * largest);
 }
 
 // Decoders relight at run time as E_rest(n) + V(n)·E_sky(n) (`validate --run-time-sky` reads a

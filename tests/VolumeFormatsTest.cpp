@@ -321,7 +321,7 @@ TEST(VolumeFormats, VdbWrittenGridByGridIsWhatOpenVdbWrites) {
   const std::string ourUuid = ours.getUniqueTag();
   // In the file's order, which is the layout's (getGrids would sort them by name).
   openvdb::GridPtrVec grids;
-  for (const VolumeGrid& spec : volumeGrids(*basis, basis->functions(0).count(), true, DistanceMapLayout{0, 0.0}, false))
+  for (const VolumeGrid& spec : volumeGrids(*basis, basis->functions(0).count(), true, DistanceMapLayout{0, 0.0}, false, false))
     grids.push_back(ours.readGrid(spec.name));
   ours.close();
   ASSERT_EQ(grids.size(), 20u);

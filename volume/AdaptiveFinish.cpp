@@ -45,11 +45,13 @@ void finishAdaptiveLevels(AdaptiveVolume& volume) {
         sampleLevels(volume.levels, index, level.grid.position(i, j, k),
                      level.coefficients.data() + row * level.coefficientsPerProbe,
                      level.visibility.data() + row * level.visibilityPerProbe,
-                     level.keepsSkyDirect ? level.skyDirect.data() + row * level.coefficientsPerProbe : nullptr);
+                     level.keepsSkyDirect ? level.skyDirect.data() + row * level.coefficientsPerProbe : nullptr,
+                     level.keepsSkyBounced ? level.skyBounced.data() + row * level.coefficientsPerProbe : nullptr);
       });
     fillInvalidProbes(level.grid, level.rows, level.states, level.coefficientsPerProbe, level.coefficients);
     fillInvalidProbes(level.grid, level.rows, level.states, level.visibilityPerProbe, level.visibility);
     fillInvalidProbes(level.grid, level.rows, level.states, level.skyDirectPerProbe(), level.skyDirect);
+    fillInvalidProbes(level.grid, level.rows, level.states, level.skyBouncedPerProbe(), level.skyBounced);
     // Dropped before finer levels read this one, so that their border probes take what a reader
     // of the file samples.
     const std::vector<bool> keep = bricksWorthStoring(level);

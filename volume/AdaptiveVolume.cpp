@@ -11,10 +11,10 @@ LevelChoice finestLevelAt(const std::vector<Volume>& levels, int levelCount, con
 }
 
 void sampleLevels(const std::vector<Volume>& levels, int levelCount, const Eigen::Vector3d& world, float* coefficients,
-                  float* visibility, float* skyDirect) {
+                  float* visibility, float* skyDirect, float* skyBounced) {
   const LevelChoice choice = finestLevelAt(levels, levelCount, world);
   choice.interpolation.apply(levels[std::size_t(choice.level)], !choice.interpolation.complete(), coefficients, visibility,
-                             skyDirect);
+                             skyDirect, skyBounced);
 }
 
 }  // namespace baker

@@ -38,8 +38,8 @@ struct LevelChoice {
 LevelChoice finestLevelAt(const std::vector<Volume>& levels, int levelCount, const Eigen::Vector3d& world);
 
 // The interpolated values of levels [0, levelCount) at `world`: what a decoder returns there
-// (`skyDirect` too when given, for levels that keep it).
+// (`skyDirect` and `skyBounced` too when given, for levels that keep them).
 void sampleLevels(const std::vector<Volume>& levels, int levelCount, const Eigen::Vector3d& world, float* coefficients,
-                  float* visibility, float* skyDirect = nullptr);
+                  float* visibility, float* skyDirect = nullptr, float* skyBounced = nullptr);
 
 }  // namespace baker

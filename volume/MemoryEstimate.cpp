@@ -13,8 +13,9 @@
 namespace baker {
 
 double volumeMemoryBytes(double probes, const Basis& basis, int distanceValues) {
-  // The coefficients twice: a bake under a sky keeps its directly seen part apart (Volume::skyDirect).
-  const double values = 2.0 * double(basis.totalCoefficients()) + double(basis.functions(0).count()) + distanceValues;
+  // The coefficients three times: a bake under a sky keeps the sky's part apart, seen directly
+  // and off surfaces (Volume::skyDirect, skyBounced).
+  const double values = 3.0 * double(basis.totalCoefficients()) + double(basis.functions(0).count()) + distanceValues;
   const double perProbe = values * sizeof(float) + sizeof(ProbeState) + sizeof(Eigen::Vector3f);
   return 2.0 * probes * perProbe;
 }

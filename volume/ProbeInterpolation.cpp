@@ -37,7 +37,7 @@ bool ProbeInterpolation::complete() const {
 }
 
 void ProbeInterpolation::apply(const Volume& v, bool renormalise, float* coefficients, float* visibility,
-                               float* skyDirect) const {
+                               float* skyDirect, float* skyBounced) const {
   const auto blend = [&](const std::vector<float>& values, int width, float* out) {
     std::fill_n(out, width, 0.0f);
     double total = 0.0;
@@ -52,6 +52,7 @@ void ProbeInterpolation::apply(const Volume& v, bool renormalise, float* coeffic
   blend(v.coefficients, v.coefficientsPerProbe, coefficients);
   blend(v.visibility, v.visibilityPerProbe, visibility);
   if (skyDirect) blend(v.skyDirect, v.skyDirectPerProbe(), skyDirect);
+  if (skyBounced) blend(v.skyBounced, v.skyBouncedPerProbe(), skyBounced);
 }
 
 }  // namespace baker

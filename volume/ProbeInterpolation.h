@@ -17,9 +17,10 @@ struct ProbeInterpolation {
   // Every probe with a weight is held: the volume covers the position.
   bool complete() const;
   // Writes the weighted sum of the held probes' values; with `renormalise`, divided by the sum of
-  // their weights (zeros when none is held). `skyDirect`, when given, of a volume that keeps it.
+  // their weights (zeros when none is held). `skyDirect` and `skyBounced`, when given, of a
+  // volume that keeps them.
   void apply(const Volume& volume, bool renormalise, float* coefficients, float* visibility,
-             float* skyDirect = nullptr) const;
+             float* skyDirect = nullptr, float* skyBounced = nullptr) const;
 };
 
 ProbeInterpolation interpolationAt(const Volume& volume, const Eigen::Vector3d& world);

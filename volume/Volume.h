@@ -32,6 +32,12 @@ struct Volume {
   // sky. coefficientsPerProbe values per probe when `keepsSkyDirect`, else none.
   bool keepsSkyDirect = false;
   std::vector<float> skyDirect;
+  // The part of `coefficients` that is the sky's light off surfaces (paths that reflected before
+  // the sky lit them), in the same layout: what relighting scales to the new sky.
+  // coefficientsPerProbe values per probe when `keepsSkyBounced` (bakes that keep skyDirect and
+  // whose paths reflect), else none.
+  bool keepsSkyBounced = false;
+  std::vector<float> skyBounced;
   // Sky visibility in channel 0's functions: V(n) = (1/π) ∫ V(ω) max(0, n·ω) dω, 1 under open
   // sky, or for radiance V(ω) itself.
   int visibilityPerProbe = 0;
@@ -62,6 +68,7 @@ struct Volume {
   const float* probe(std::int64_t index) const { return coefficients.data() + rowOf(index) * coefficientsPerProbe; }
   int distanceMomentsPerProbe() const { return distanceMap.size > 0 ? distanceMap.valuesPerProbe() : 0; }
   int skyDirectPerProbe() const { return keepsSkyDirect ? coefficientsPerProbe : 0; }
+  int skyBouncedPerProbe() const { return keepsSkyBounced ? coefficientsPerProbe : 0; }
 
   // Every per-probe array of floats with its width, for code that moves, packs or checks rows
   // alike; the order is fixed (packing relies on it).
@@ -70,15 +77,17 @@ struct Volume {
     Values* values;
     int width;
   };
-  std::array<Rows<std::vector<float>>, 4> floatRows() {
+  std::array<Rows<std::vector<float>>, 5> floatRows() {
     return {{{&coefficients, coefficientsPerProbe},
              {&skyDirect, skyDirectPerProbe()},
+             {&skyBounced, skyBouncedPerProbe()},
              {&visibility, visibilityPerProbe},
              {&distanceMoments, distanceMomentsPerProbe()}}};
   }
-  std::array<Rows<const std::vector<float>>, 4> floatRows() const {
+  std::array<Rows<const std::vector<float>>, 5> floatRows() const {
     return {{{&coefficients, coefficientsPerProbe},
              {&skyDirect, skyDirectPerProbe()},
+             {&skyBounced, skyBouncedPerProbe()},
              {&visibility, visibilityPerProbe},
              {&distanceMoments, distanceMomentsPerProbe()}}};
   }

@@ -42,6 +42,9 @@ void requireSameBake(const Volume& part, const std::string& name, const Volume& 
              std::to_string(first.visibilityPerProbe));
   if (part.keepsSkyDirect != first.keepsSkyDirect)
     mismatch("baker.sky_direct", part.keepsSkyDirect ? "present" : "absent", first.keepsSkyDirect ? "present" : "absent");
+  if (part.keepsSkyBounced != first.keepsSkyBounced)
+    mismatch("baker.sky_bounced", part.keepsSkyBounced ? "present" : "absent",
+             first.keepsSkyBounced ? "present" : "absent");
   const DistanceMapLayout &d = part.distanceMap, &e = first.distanceMap;
   if (d.size != e.size || d.cap != e.cap || d.skyVisibility != e.skyVisibility)
     mismatch("baker.distance_map", fmt::format("size {} cap {:.17g} sky {}", d.size, d.cap, d.skyVisibility),
@@ -66,6 +69,7 @@ Volume volumeWithoutValues(const Volume& volume) {
   header.basisName = volume.basisName;
   header.coefficientsPerProbe = volume.coefficientsPerProbe;
   header.keepsSkyDirect = volume.keepsSkyDirect;
+  header.keepsSkyBounced = volume.keepsSkyBounced;
   header.visibilityPerProbe = volume.visibilityPerProbe;
   header.distanceMap = volume.distanceMap;
   header.sky = volume.sky;
@@ -180,6 +184,7 @@ Volume VolumeAssembly::finish() {
   fillInvalidProbes(whole_.grid, whole_.states, whole_.coefficientsPerProbe, whole_.coefficients);
   fillInvalidProbes(whole_.grid, whole_.states, whole_.visibilityPerProbe, whole_.visibility);
   fillInvalidProbes(whole_.grid, whole_.states, whole_.skyDirectPerProbe(), whole_.skyDirect);
+  fillInvalidProbes(whole_.grid, whole_.states, whole_.skyBouncedPerProbe(), whole_.skyBounced);
   whole_.shard.reset();
   return std::move(whole_);
 }
