@@ -12,8 +12,8 @@ namespace baker {
 
 int runRelightCommand(int argc, char** argv) {
   CLI::App app{"Relight a volume to another sky without a rebake: the sky it was baked under is taken away and the "
-               "new one added through each probe's stored sky visibility. Lamps, emission and light the sky sent "
-               "through bounces are kept as baked (docs/RELIGHTING.md)."};
+               "new one added through each probe's stored sky visibility; the light the sky sent off surfaces is "
+               "scaled to the new sky, approximately. Lamps and emission are kept as baked (docs/RELIGHTING.md)."};
   RelightRequest request;
   std::string outPath, format, precision = "half";
   bool json = false;

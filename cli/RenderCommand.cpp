@@ -79,7 +79,7 @@ std::unique_ptr<BakeJob> referenceJob(const CLI::App& app, const BakeOptions& op
 }
 
 struct Rendering {
-  std::vector<SurfacePoint> points;
+  std::vector<SeenPoint> points;
   std::vector<std::vector<Eigen::Vector3f>> panels;  // traced, then trilinear and leak-aware
   std::int64_t seen = 0;
   double tracedLevel = 0.0, tracedSeconds = 0.0;
@@ -90,7 +90,7 @@ Rendering renderPanels(const BakeJob& job, const SurfaceCamera& camera, const Ad
   Rendering r;
   const auto start = std::chrono::steady_clock::now();
   r.points = surfacesSeen(job.tracer(), camera);
-  for (const SurfacePoint& p : r.points) r.seen += p.seen;
+  for (const SeenPoint& p : r.points) r.seen += p.seen;
   if (r.seen == 0) return r;
   {
     ProgressBar bar("tracing", progress);

@@ -122,7 +122,7 @@ int runSampleCommand(int argc, char** argv) {
       throw InputError(fmt::format("{}: holds no distance moments, which --leak-aware reads (bake it again with "
                                    "--placement uniform and --distance-map above 0)",
                                    path));
-    const SurfaceSample s = sampleOnSurface(levels, position, normal, leakAware, path);
+    const SurfaceReading s = sampleOnSurface(levels, position, normal, leakAware, path);
     const Volume& volume = levels.levels[std::size_t(s.level)];
     const Eigen::Vector3f e = reading.irradiance(s.coefficients.data(), normal);
     const bool hasVisibility = volume.visibilityPerProbe > 0;

@@ -67,7 +67,7 @@ Volume VolumeHeader::emptyVolume(const std::string& path, PartReading parts) con
   Volume volume;
   readDistanceMap(text, volume, path);
   readSky(text, volume, path);
-  readSkyDirect(text, volume);
+  readSkyDirect(text, volume, path);
   const double needed =
       volumeMemoryBytes(std::min(heldProbes, gridProbes), *basis, volume.distanceMomentsPerProbe()) / 2;
   if (needed > double(physicalMemoryBytes()))

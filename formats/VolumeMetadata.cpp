@@ -202,9 +202,14 @@ nlohmann::json skyMetadata(const SkyRadiance& sky) {
            "visibility before adding another (docs/RELIGHTING.md)"}};
 }
 
-void readSkyDirect(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume) {
+void readSkyDirect(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume,
+                   const std::string& path) {
   volume.keepsSkyDirect = metadataValue(metadata, kSkyDirectKey) != nullptr;
-  volume.keepsSkyBounced = volume.keepsSkyDirect && metadataValue(metadata, kSkyBouncedKey) != nullptr;
+  volume.keepsSkyBounced = metadataValue(metadata, kSkyBouncedKey) != nullptr;
+  if (volume.keepsSkyBounced && !volume.keepsSkyDirect)
+    throw InputError(fmt::format("{}: has {} without {}: the sky's light off surfaces is kept only beside the sky "
+                                 "seen directly",
+                                 path, kSkyBouncedKey, kSkyDirectKey));
 }
 
 void readSky(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume, const std::string& path) {

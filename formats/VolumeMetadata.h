@@ -64,7 +64,9 @@ constexpr const char* kSkyDirectKey = "baker.sky_direct";
 constexpr const char* kSkyBouncedKey = "baker.sky_bounced";
 // Sets volume.keepsSkyDirect and keepsSkyBounced from those keys' presence (the second only with
 // the first).
-void readSkyDirect(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume);
+// InputError naming `path` for the second key without the first.
+void readSkyDirect(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume,
+                   const std::string& path);
 
 // Recovers volume.settings from "baker.setting.*" keys.
 void readSettings(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume);

@@ -17,7 +17,7 @@ VolumeSample sampleVolume(const Volume& v, const Eigen::Vector3d& world) {
   return s;
 }
 
-SurfaceSample sampleOnSurface(const AdaptiveVolume& levels, const Eigen::Vector3d& point, const Eigen::Vector3d& normal,
+SurfaceReading sampleOnSurface(const AdaptiveVolume& levels, const Eigen::Vector3d& point, const Eigen::Vector3d& normal,
                               bool leakAware, const std::string& source) {
   const LevelChoice choice = finestLevelAt(levels.levels, int(levels.levels.size()), point);
   const Volume& volume = levels.levels[std::size_t(choice.level)];
@@ -25,7 +25,7 @@ SurfaceSample sampleOnSurface(const AdaptiveVolume& levels, const Eigen::Vector3
     throw InputError(fmt::format("{}: holds no distance moments, which leak-aware reading needs (bake it again with "
                                  "uniform placement and a distance map)",
                                  source));
-  SurfaceSample s;
+  SurfaceReading s;
   s.level = choice.level;
   s.interpolation = choice.interpolation;
   const bool reweighed = leakAware && weighAgainstLeaks(volume, point, normal, s.interpolation, s.corners);

@@ -22,13 +22,13 @@ VolumeSample sampleVolume(const Volume& volume, const Eigen::Vector3d& world);
 // A volume read at a point on a surface as an engine reads it (`baker sample`): the finest level
 // holding the eight probes around the point, interpolated trilinearly or, with `leakAware`,
 // weighed against leaks (volume/LeakAwareInterpolation.h) and renormalised.
-struct SurfaceSample : VolumeSample {
+struct SurfaceReading : VolumeSample {
   int level = 0;
   ProbeInterpolation interpolation;
   LeakAwareCorner corners[8];  // the weights leak-aware reading gave, when it was asked for
 };
 // InputError naming `source` when leak-aware reading is asked of a level without distance maps.
-SurfaceSample sampleOnSurface(const AdaptiveVolume& levels, const Eigen::Vector3d& point, const Eigen::Vector3d& normal,
+SurfaceReading sampleOnSurface(const AdaptiveVolume& levels, const Eigen::Vector3d& point, const Eigen::Vector3d& normal,
                               bool leakAware, const std::string& source);
 
 // Sky visibility V(n) from visibility coefficients in the basis's channel-0 functions.

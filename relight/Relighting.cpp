@@ -6,12 +6,10 @@
 #include <atomic>
 #include <algorithm>
 #include <chrono>
-#include <memory>
 #include <optional>
 #include <utility>
 
 #include "bake/SkyProjection.h"
-#include "basis/BasisRegistry.h"
 #include "basis/StoredSignal.h"
 #include "common/Error.h"
 #include "common/Timing.h"
@@ -90,32 +88,14 @@ Eigen::VectorXd visibilityOf(const Volume& level, const SkyTransfer& transfer, s
       .cast<double>();
 }
 
-// How much of each sky a probe sees directly, per RGB channel: ∫ V(ω) L(ω) dω through its map, up
-// to a constant factor (the SH band-0 coefficient of V·L, SkyTransfer's own integral). The light
-// the sky sends off surfaces is scaled by the ratio new / old: the surfaces around a probe see
-// about the sky it sees (through the same window, under the same open sky).
-class SkyFlux {
- public:
-  SkyFlux(const DistanceMapLayout& map, const SkyRadiance& before, const SkyRadiance& after)
-      : basis_(makeBasis("sh-l1")),
-        transfer_(*basis_, StoredSignal::Radiance, BandWindow{}, map),
-        before_(transfer_.operators(SkyRadiance{}, before)),
-        after_(transfer_.operators(SkyRadiance{}, after)) {}
-
+// How much of each sky a probe sees directly, per RGB channel: ∫ V(ω) L(ω) dω through its map
+// (SkyTransfer::mapFlux). The light the sky sends off surfaces is scaled by the ratio new / old:
+// the surfaces around a probe see about the sky it sees (through the same window, under the same
+// open sky).
+struct SkyFlux {
+  Eigen::Matrix3Xd before, after;
   // Per channel, the flux of the old sky and of the new one the map `v` lets through.
-  std::pair<Eigen::Vector3d, Eigen::Vector3d> seen(const Eigen::VectorXd& v) const {
-    Eigen::Vector3d old, now;
-    for (int c = 0; c < 3; ++c) {
-      old[c] = before_[std::size_t(c)].row(0).dot(v);
-      now[c] = after_[std::size_t(c)].row(0).dot(v);
-    }
-    return {old, now};
-  }
-
- private:
-  std::unique_ptr<Basis> basis_;
-  SkyTransfer transfer_;
-  std::vector<Eigen::MatrixXd> before_, after_;
+  std::pair<Eigen::Vector3d, Eigen::Vector3d> seen(const Eigen::VectorXd& v) const { return {before * v, after * v}; }
 };
 
 // Per probe row of `level`, the factor its light off surfaces takes, per RGB channel: the ratio of
@@ -232,8 +212,7 @@ SkyChange relightVolume(AdaptiveVolume& volume, const Basis& basis, const SkyRad
   if (first.sky->rgb == sky.rgb) {
     if (!first.settings.count("baked_sky")) first.settings["baked_sky"] = setting(first, "sky", "none");
     first.settings["sky"] = description;
-    return {"unchanged: the new sky is the one the volume holds", "nothing to take away: the same sky",
-            keepsSkyBounced(volume)};
+    return {"unchanged: the new sky is the one the volume holds", "nothing to take away: the same sky", false};
   }
   const StoredSignal signal = storedSignalOf(first.settings);
   // Every level reads V the same way: adaptive levels hold no maps.
@@ -244,8 +223,12 @@ SkyChange relightVolume(AdaptiveVolume& volume, const Basis& basis, const SkyRad
   // The light off surfaces is scaled by what each probe's map sees of both skies; without maps
   // (adaptive levels, --distance-map 0) it is kept as baked.
   const bool scalesBounce = exact && transfer.readsMap() && keepsSkyBounced(volume);
+  if (scalesBounce && first.shard)
+    throw InputError(fmt::format("{}: is a shard's part; its light off surfaces is scaled by the whole bake's mean "
+                                 "view of the sky, so merge the parts first and relight the merged volume",
+                                 name));
   std::optional<SkyFlux> flux;
-  if (scalesBounce) flux.emplace(first.distanceMap, *first.sky, sky);
+  if (scalesBounce) flux = SkyFlux{transfer.mapFlux(*first.sky), transfer.mapFlux(sky)};
   for (Volume& level : volume.levels) {
     if (!exact) {
       level.keepsSkyDirect = false;

@@ -255,6 +255,13 @@ TEST(Relight, ScalesTheSkysLightOffSurfacesToTheNewSky) {
     EXPECT_TRUE(nlohmann::json::parse(run.out).at("bounce_scaled").get<bool>());
     const Volume baked = readVolume(dir + "/baked.vdb"), relit = readVolume(dir + "/relit.vdb");
     ASSERT_TRUE(relit.keepsSkyBounced);
+    // The light that is neither part, the panel's, stays as baked.
+    std::vector<float> restBaked = baked.coefficients, restRelit = relit.coefficients;
+    for (std::size_t i = 0; i < restBaked.size(); ++i) {
+      restBaked[i] -= baked.skyDirect[i] + baked.skyBounced[i];
+      restRelit[i] -= relit.skyDirect[i] + relit.skyBounced[i];
+    }
+    EXPECT_LT(largestDifference(restRelit, restBaked), 1e-5f * largestMagnitude(relit.coefficients)) << basisName;
     const std::unique_ptr<Basis> basis = makeBasis(basisName);
     const Eigen::Vector3d luminance(0.25, 0.5, 0.25);
     const float largest = largestMagnitude(baked.skyBounced);
@@ -277,6 +284,45 @@ TEST(Relight, ScalesTheSkysLightOffSurfacesToTheNewSky) {
   const float largest = largestMagnitude(straight.coefficients);
   EXPECT_LT(largestDifference(onward.coefficients, straight.coefficients), 1e-5f * largest);
   EXPECT_LT(largestDifference(onward.skyBounced, straight.skyBounced), 1e-5f * largest);
+  // A shard's part knows only its own probes' view of the sky, not the whole bake's mean.
+  bake(dir, {"--sky", "0.5,0.7,0.9", "--rays", "16", "--shard", "0/2", "--out", "part.vdb"}, "1");
+  const test::ProcessResult part = relight(dir, {"part.vdb", "--sky", "1,1,1", "--out", "part_relit.vdb"});
+  EXPECT_EQ(part.exitCode, 2) << part.err;
+  EXPECT_NE(part.err.find("part.vdb: is a shard's part"), std::string::npos) << part.err;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/part_relit.vdb"));
+}
+
+// Probes whose maps see the whole sky: each one's flux is the sky's whole flux, as is the level's
+// mean, so the light off surfaces must scale by ∫L_new / ∫L_old per channel, summed here over the
+// recorded skies' texels: the low sun's taken away, a constant sky of 1, 2, 3 put in.
+TEST(Relight, OpenProbesScaleTheirLightOffSurfacesByTheSkysWholeFlux) {
+  const std::unique_ptr<Basis> basis = makeBasis("sh-l2");
+  AdaptiveVolume volume = openProbe(*basis);
+  Volume& v = volume.levels.front();
+  std::vector<std::string> warnings;
+  SceneOptions sun, constant;
+  sun.environmentMap = test::sourcePath(kLowSun);
+  constant.sky = "1,2,3";
+  v.sky = recordSky(environmentFromOptions(sun, warnings));
+  const SkyRadiance newSky = recordSky(environmentFromOptions(constant, warnings));
+  v.keepsSkyDirect = v.keepsSkyBounced = true;
+  v.skyDirect.assign(v.coefficients.size(), 0.0f);
+  for (std::size_t i = 0; i < v.coefficients.size(); ++i) v.skyBounced.push_back(0.1f + 0.01f * float(i % 17));
+  const std::vector<float> before = v.skyBounced;
+  const auto wholeFlux = [](const SkyRadiance& sky) {
+    Eigen::Vector3d flux = Eigen::Vector3d::Zero();
+    for (int row = 0; row < sky.height; ++row)
+      for (int column = 0; column < sky.width; ++column)
+        flux += sky.texel(column, row).cast<double>() *
+                latLongSolidAngle(1.0 / sky.width, double(row) / sky.height, double(row + 1) / sky.height);
+    return flux;
+  };
+  const Eigen::Vector3d ratio = wholeFlux(newSky).cwiseQuotient(wholeFlux(*v.sky));
+  EXPECT_TRUE(relightVolume(volume, *basis, newSky, "constant 1,2,3", "open").bounceScaled);
+  for (std::size_t i = 0; i < before.size(); ++i) {
+    const int channel = int(i % std::size_t(v.coefficientsPerProbe)) / basis->coefficientCount(0);
+    ASSERT_NEAR(v.skyBounced[i], before[i] * ratio[channel], 1e-4 * before[i] * ratio[channel]) << i;
+  }
 }
 
 // Decoders relight at run time as E_rest(n) + V(n)·E_sky(n) (`validate --run-time-sky` reads a

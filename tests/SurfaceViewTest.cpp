@@ -48,12 +48,12 @@ TEST(SurfaceView, EachPixelSeesTheSurfaceWhereItsRayMeetsIt) {
   for (const View& view : views) {
     camera.eye = view.eye;
     camera.target = view.target;
-    const std::vector<SurfacePoint> points = surfacesSeen(job.tracer(), camera);
+    const std::vector<SeenPoint> points = surfacesSeen(job.tracer(), camera);
     ASSERT_EQ(points.size(), 81u);
     for (int r = 0; r < 9; ++r)
       for (int c = 0; c < 9; ++c) {
         const double x = 2.0 * (c + 0.5) / 9.0 - 1.0, y = 1.0 - 2.0 * (r + 0.5) / 9.0;
-        const SurfacePoint& p = points[std::size_t(r) * 9 + c];
+        const SeenPoint& p = points[std::size_t(r) * 9 + c];
         ASSERT_TRUE(p.seen) << r << " " << c;
         EXPECT_LT((p.point - view.expected(x, y)).norm(), 1e-5) << r << " " << c;
         EXPECT_LT((p.normal - view.normal).norm(), 1e-6) << r << " " << c;
@@ -78,7 +78,7 @@ TEST(SurfaceView, TracedIrradianceUnderAConstantSkyIsPiTimesTheSky) {
   camera.target = {2.0, 2.0, 0.0};
   camera.width = 16;
   camera.height = 12;
-  const std::vector<SurfacePoint> points = surfacesSeen(job.tracer(), camera);
+  const std::vector<SeenPoint> points = surfacesSeen(job.tracer(), camera);
   const std::vector<Eigen::Vector3f> traced = tracedIrradiance(job, points, 1000);
   int seen = 0;
   for (std::size_t p = 0; p < points.size(); ++p) {
@@ -96,11 +96,11 @@ TEST(SurfaceView, TracedIrradianceUnderAConstantSkyIsPiTimesTheSky) {
 // two steps flanking each other), one at 1.5 (a leak).
 TEST(SurfaceView, TheComparisonCountsSeamsLeaksAndBlotches) {
   const int width = 10, height = 4;
-  std::vector<SurfacePoint> points(width * height);
+  std::vector<SeenPoint> points(width * height);
   std::vector<Eigen::Vector3f> traced(points.size(), Eigen::Vector3f::Ones()), read = traced;
   for (int r = 0; r < height; ++r)
     for (int c = 0; c < width; ++c) {
-      SurfacePoint& p = points[std::size_t(r) * width + c];
+      SeenPoint& p = points[std::size_t(r) * width + c];
       p.seen = true;
       p.point = {0.01 * c, -0.01 * r, 0.0};
       if (c >= 5) read[std::size_t(r) * width + c] *= 1.2f;

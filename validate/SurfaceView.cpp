@@ -52,7 +52,7 @@ CameraFrame frameOf(const SurfaceCamera& camera) {
 }
 
 // Two neighbouring pixels lie on one plane: the same normal, and the step between them in it.
-bool onOnePlane(const SurfacePoint& a, const SurfacePoint& b) {
+bool onOnePlane(const SeenPoint& a, const SeenPoint& b) {
   if (!a.seen || !b.seen || a.normal.dot(b.normal) < 0.9999) return false;
   const Eigen::Vector3d step = b.point - a.point;
   return std::abs(a.normal.dot(step)) <= 0.01 * step.norm();
@@ -63,7 +63,7 @@ bool onOnePlane(const SurfacePoint& a, const SurfacePoint& b) {
 // reading (trilinear, or leak-aware weights that change gradually) steps evenly however steep
 // its gradient; a single odd pixel is flanked by its own two steps, so it counts as a blotch or
 // a leak, not a seam.
-void countSeams(const std::vector<SurfacePoint>& points, const std::vector<Eigen::Vector3f>& read, int width,
+void countSeams(const std::vector<SeenPoint>& points, const std::vector<Eigen::Vector3f>& read, int width,
                 double level, SurfaceError& error) {
   const std::size_t w = std::size_t(width), rows = points.size() / w;
   std::int64_t seams = 0;
@@ -89,13 +89,13 @@ void countSeams(const std::vector<SurfacePoint>& points, const std::vector<Eigen
 
 }  // namespace
 
-std::vector<SurfacePoint> surfacesSeen(const RayTracer& tracer, const SurfaceCamera& camera) {
+std::vector<SeenPoint> surfacesSeen(const RayTracer& tracer, const SurfaceCamera& camera) {
   if (camera.width < 1 || camera.height < 1 || !((camera.target - camera.eye).norm() > 0.0) ||
       !(camera.verticalFovDegrees > 0.0 && camera.verticalFovDegrees < 180.0))
     throw std::invalid_argument("surfacesSeen: a camera needs pixels, a direction and a field of view below 180°");
   const CameraFrame f = frameOf(camera);
   const std::size_t pixels = std::size_t(camera.width) * camera.height;
-  std::vector<SurfacePoint> points(pixels);
+  std::vector<SeenPoint> points(pixels);
   const Eigen::Vector3f eye = camera.eye.cast<float>();
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pixels, 8), [&](const tbb::blocked_range<std::size_t>& range) {
     for (std::size_t first = range.begin(); first < range.end(); first += 8) {
@@ -111,7 +111,7 @@ std::vector<SurfacePoint> surfacesSeen(const RayTracer& tracer, const SurfaceCam
       tracer.intersect8(eye, directions, count, hits);
       for (int k = 0; k < count; ++k) {
         if (hits[k].missed() || hits[k].frontNormal.squaredNorm() == 0.0f) continue;
-        SurfacePoint& s = points[first + k];
+        SeenPoint& s = points[first + k];
         s.seen = true;
         s.point = (eye + hits[k].distance * directions[k]).cast<double>();
         s.normal = hits[k].frontNormal.cast<double>().normalized();
@@ -122,7 +122,7 @@ std::vector<SurfacePoint> surfacesSeen(const RayTracer& tracer, const SurfaceCam
   return points;
 }
 
-std::vector<Eigen::Vector3f> tracedIrradiance(const BakeJob& job, const std::vector<SurfacePoint>& points,
+std::vector<Eigen::Vector3f> tracedIrradiance(const BakeJob& job, const std::vector<SeenPoint>& points,
                                               std::uint64_t firstId,
                                               const std::function<void(std::int64_t, std::int64_t)>& progress) {
   const ProbeBaker probeBaker(job.scene(), job.tracer(), job.basis(), job.settings(), kRotations);
@@ -160,26 +160,26 @@ std::vector<Eigen::Vector3f> tracedIrradiance(const BakeJob& job, const std::vec
   return irradiance;
 }
 
-std::vector<Eigen::Vector3f> volumeIrradiance(const AdaptiveVolume& levels, const std::vector<SurfacePoint>& points,
+std::vector<Eigen::Vector3f> volumeIrradiance(const AdaptiveVolume& levels, const std::vector<SeenPoint>& points,
                                               bool leakAware, const std::string& source) {
   const VolumeReconstruction reading(levels.coarsest());
   std::vector<Eigen::Vector3f> irradiance(points.size(), Eigen::Vector3f::Zero());
   tbb::parallel_for(std::size_t(0), points.size(), [&](std::size_t p) {
     if (!points[p].seen) return;
-    const SurfaceSample s = sampleOnSurface(levels, points[p].point, points[p].normal, leakAware, source);
+    const SurfaceReading s = sampleOnSurface(levels, points[p].point, points[p].normal, leakAware, source);
     irradiance[p] = reading.irradiance(s.coefficients.data(), points[p].normal);
   });
   return irradiance;
 }
 
-double surfaceLevel(const std::vector<SurfacePoint>& points, const std::vector<Eigen::Vector3f>& values) {
+double surfaceLevel(const std::vector<SeenPoint>& points, const std::vector<Eigen::Vector3f>& values) {
   std::vector<double> seen;
   for (std::size_t p = 0; p < points.size(); ++p)
     if (points[p].seen) seen.push_back(meanChannel(values[p]));
   return medianOf(std::move(seen));
 }
 
-SurfaceError compareSurfaces(const std::vector<SurfacePoint>& points, const std::vector<Eigen::Vector3f>& read,
+SurfaceError compareSurfaces(const std::vector<SeenPoint>& points, const std::vector<Eigen::Vector3f>& read,
                              const std::vector<Eigen::Vector3f>& traced, int width, double level) {
   SurfaceError error;
   if (!(level > 0.0)) return error;
@@ -209,7 +209,7 @@ SurfaceError compareSurfaces(const std::vector<SurfacePoint>& points, const std:
   return error;
 }
 
-RgbImage surfacePanels(const std::vector<SurfacePoint>& points, const std::vector<std::vector<Eigen::Vector3f>>& panels,
+RgbImage surfacePanels(const std::vector<SeenPoint>& points, const std::vector<std::vector<Eigen::Vector3f>>& panels,
                        int width, int height, double exposure) {
   const int count = int(panels.size());
   RgbImage image(count * width + (count - 1) * kPanelGap, height);

@@ -24,25 +24,25 @@ struct SurfaceCamera {
 };
 
 // The first surface a pixel sees: the point, and the unit normal of the side facing the eye.
-struct SurfacePoint {
+struct SeenPoint {
   bool seen = false;
   Eigen::Vector3d point{0.0, 0.0, 0.0}, normal{0.0, 0.0, 1.0};
 };
 
 // Rows from the top, pixels left to right.
-std::vector<SurfacePoint> surfacesSeen(const RayTracer& tracer, const SurfaceCamera& camera);
+std::vector<SeenPoint> surfacesSeen(const RayTracer& tracer, const SurfaceCamera& camera);
 
 // Each seen point's irradiance for its normal from its own rays: a probe there, traced with the
 // job's settings (ids from `firstId` in pixel order, so that every point draws its own samples),
 // its samples' cosine sum (sampledIrradiance), no basis in between. `progress` hears (points
 // done, points in all) from worker threads. Zero for pixels that see no surface.
-std::vector<Eigen::Vector3f> tracedIrradiance(const BakeJob& job, const std::vector<SurfacePoint>& points,
+std::vector<Eigen::Vector3f> tracedIrradiance(const BakeJob& job, const std::vector<SeenPoint>& points,
                                               std::uint64_t firstId,
                                               const std::function<void(std::int64_t, std::int64_t)>& progress = {});
 
 // Each seen point's irradiance read from a volume as `baker sample` reads it (sampleOnSurface:
 // trilinear or leak-aware). `source` names the volume in errors.
-std::vector<Eigen::Vector3f> volumeIrradiance(const AdaptiveVolume& levels, const std::vector<SurfacePoint>& points,
+std::vector<Eigen::Vector3f> volumeIrradiance(const AdaptiveVolume& levels, const std::vector<SeenPoint>& points,
                                               bool leakAware, const std::string& source);
 
 // How far a picture read from a volume is from the traced one, in shares of `level` (a room no
@@ -60,13 +60,13 @@ struct SurfaceError {
   std::int64_t planePairs = 0;
 };
 // The median over seen pixels of (R+G+B)/3.
-double surfaceLevel(const std::vector<SurfacePoint>& points, const std::vector<Eigen::Vector3f>& values);
-SurfaceError compareSurfaces(const std::vector<SurfacePoint>& points, const std::vector<Eigen::Vector3f>& read,
+double surfaceLevel(const std::vector<SeenPoint>& points, const std::vector<Eigen::Vector3f>& values);
+SurfaceError compareSurfaces(const std::vector<SeenPoint>& points, const std::vector<Eigen::Vector3f>& read,
                              const std::vector<Eigen::Vector3f>& traced, int width, double level);
 
 // The panels side by side, 4 dark pixels apart, in displayedColour at one exposure; pixels that
 // see no surface are dark grey.
-RgbImage surfacePanels(const std::vector<SurfacePoint>& points, const std::vector<std::vector<Eigen::Vector3f>>& panels,
+RgbImage surfacePanels(const std::vector<SeenPoint>& points, const std::vector<std::vector<Eigen::Vector3f>>& panels,
                        int width, int height, double exposure);
 
 }  // namespace baker

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <memory>
+#include <stdexcept>
 
 #include "basis/SphericalHarmonics.h"
 
@@ -83,6 +84,16 @@ Eigen::MatrixXd SkyTransfer::blendsAt(std::size_t first, std::size_t count) cons
     for (int corner = 0; corner < 4; ++corner)
       h(Eigen::Index(q), nodes_[first + q].blend.texel[corner]) += nodes_[first + q].blend.weight[corner];
   return h;
+}
+
+Eigen::Matrix3Xd SkyTransfer::mapFlux(const SkyRadiance& sky) const {
+  if (!readsMap()) throw std::logic_error("SkyTransfer::mapFlux: this transfer reads no map");
+  Eigen::Matrix3Xd flux = Eigen::Matrix3Xd::Zero(3, map_.texels());
+  for (const Node& node : nodes_) {
+    const Eigen::Vector3d rgb = node.weight * sky.texel(node.texel % sky.width, node.texel / sky.width);
+    for (int k = 0; k < 4; ++k) flux.col(node.blend.texel[k]) += node.blend.weight[k] * rgb;
+  }
+  return flux;
 }
 
 std::vector<Eigen::MatrixXd> SkyTransfer::operators(const SkyRadiance& before, const SkyRadiance& after) const {

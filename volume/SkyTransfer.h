@@ -48,6 +48,9 @@ class SkyTransfer {
   // R_c for each of the basis's three channels, for the sky changing from `before` to `after`
   // (skies of SkyRadiance's size).
   std::vector<Eigen::MatrixXd> operators(const SkyRadiance& before, const SkyRadiance& after) const;
+  // With a map: per RGB channel (rows) and map texel (columns), the flux of `sky` through the
+  // texel's bilinear share, so that flux · v = ∫ V(ω) L(ω) dω, V blended from the map v as above.
+  Eigen::Matrix3Xd mapFlux(const SkyRadiance& sky) const;
 
  private:
   struct Node {
