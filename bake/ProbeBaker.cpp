@@ -164,6 +164,9 @@ ProbeBaker::ProbeBaker(const Scene& scene, const RayTracer& tracer, const Basis&
     for (const Eigen::Vector3d& v : sets.back().directions) d.push_back(v.cast<float>());
     directions_.push_back(std::move(d));
   }
+  if (settings.distanceMapSize > 0 && !settings.convergence.adaptive())
+    for (const std::vector<Eigen::Vector3f>& d : directions_)
+      distanceWeights_.emplace_back(DistanceMapLayout::baked(settings.distanceMapSize, 0.0), d.data(), int(d.size()));
   for (int c = 0; c < 3; ++c) {
     if (c > 0 && &basis.functions(c) == &basis.functions(c - 1)) {
       ++groups_.back().channelCount;
@@ -438,7 +441,7 @@ void ProbeBaker::traceLattice(const ProbeTask& task, const RotationBlocks& rotat
   const int skyParts = (rotations.width - 4) / 3;
   integrator_.trace(task.position, task.id, dirs.data(), rays, radiance.data(), sky.data(), counts, &view,
                     distances ? hitDistance.data() : nullptr, skyParts > 1 ? bounced.data() : nullptr);
-  if (distances) distances->add(dirs.data(), hitDistance.data(), rays);
+  if (distances) distances->add(distanceWeights_[block.rotation], hitDistance.data());
   const int base = rotations.width * block.first;
   for (int r = 0; r < rays; ++r) {
     const Eigen::Vector3f value = toColorSpace(basis_.colorSpace(), radiance[r]);

@@ -212,6 +212,7 @@ class ProbeBaker {
   std::vector<std::vector<Eigen::Vector3f>> directions_;  // per rotation
   std::vector<DirectionSet> roundLattices_;               // unturned, per round (adaptive convergence)
   std::vector<double> weights_;
+  std::vector<DistanceLatticeWeights> distanceWeights_;  // per rotation, for fixed lattices' distance moments
   // Deltas (lights, direct-view samples, adaptive lattices) are expanded in these functions before
   // each group's operator: SH for irradiance (the punctual lights' order, the lattice's for the
   // rest), for radiance the basis's own functions (`ownFunctions_`).

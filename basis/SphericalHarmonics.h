@@ -24,6 +24,11 @@ class SphericalHarmonics : public SphericalFunctions {
 
  private:
   int order_;
+  // P(l,m) = ofCurrent·z·P(l−1,m) − ofPrevious·P(l−2,m): (2l−1)/(l−m) and (l+m−1)/(l−m).
+  struct Recurrence {
+    double ofCurrent = 0.0, ofPrevious = 0.0;
+  };
+  std::vector<Recurrence> recurrence_;  // [l·(l+1)/2 + m], m < l
   std::vector<double> normalisation_;  // [l·(l+1)/2 + m]: √2·K(l,m) for m > 0, K(l,0) for m = 0
 };
 

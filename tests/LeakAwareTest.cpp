@@ -71,6 +71,35 @@ TEST(DistanceMoments, MomentsOfConstantDistancesAreExact) {
   }
 }
 
+// A fixed lattice's weights, worked out once (what a bake's fixed lattices use), give the very
+// sums of working them out ray by ray: the same moments bit for bit, after the same earlier rays.
+TEST(DistanceMoments, LatticeWeightsWorkedOutOnceGiveTheSameSums) {
+  const DistanceMapLayout layout = DistanceMapLayout::baked(8, 1.5);
+  std::mt19937 rng(kSeed + 2);
+  std::uniform_real_distribution<float> reach(0.05f, 2.5f);
+  std::vector<Eigen::Vector3f> earlier(37), directions(300);
+  std::vector<float> earlierDistances(earlier.size()), distances(directions.size());
+  for (Eigen::Vector3f& d : earlier) d = test::randomDirection(rng).cast<float>();
+  for (Eigen::Vector3f& d : directions) d = test::randomDirection(rng).cast<float>();
+  for (float& r : earlierDistances) r = reach(rng);
+  for (std::size_t r = 0; r < distances.size(); ++r)
+    distances[r] = r % 5 == 0 ? std::numeric_limits<float>::infinity() : reach(rng);
+  const DistanceLatticeWeights weights(layout, directions.data(), int(directions.size()));
+  for (const bool withEarlier : {false, true}) {
+    DistanceMomentsAccumulator rayByRay(layout), once(layout);
+    if (withEarlier) {
+      rayByRay.add(earlier.data(), earlierDistances.data(), int(earlier.size()));
+      once.add(earlier.data(), earlierDistances.data(), int(earlier.size()));
+    }
+    rayByRay.add(directions.data(), distances.data(), int(directions.size()));
+    once.add(weights, distances.data());
+    std::vector<float> expected(std::size_t(layout.valuesPerProbe())), got(expected.size());
+    rayByRay.write(expected.data());
+    once.write(got.data());
+    EXPECT_EQ(got, expected) << (withEarlier ? "after earlier rays" : "alone");
+  }
+}
+
 // The mean, over the texel's lobe max(0, c·ω)^k, of the distance to a floor `height` below:
 // a midpoint rule in the lobe's own frame, out to 70° (where the lobe is below 1e-13).
 double lobeMeanDistanceToFloor(const Eigen::Vector3d& c, double k, double height) {

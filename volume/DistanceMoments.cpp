@@ -50,6 +50,12 @@ void DistanceMomentsAccumulator::reset() {
   nearestEscaped_.assign(weight_.size(), 0.0);
 }
 
+bool DistanceMomentsAccumulator::lobeWeight(double cosine, double sharpness, double cutoff, double* weight) {
+  if (cosine <= cutoff) return false;
+  *weight = std::exp(sharpness * std::log(cosine));
+  return true;
+}
+
 void DistanceMomentsAccumulator::add(const Eigen::Vector3f* directions, const float* distances, int count) {
   for (int r = 0; r < count; ++r) {
     const Eigen::Vector3d d = directions[r].cast<double>();
@@ -62,13 +68,62 @@ void DistanceMomentsAccumulator::add(const Eigen::Vector3f* directions, const fl
         nearestDistance_[t] = distance;
         nearestEscaped_[t] = escaped;
       }
-      if (c <= cutoff_) continue;
-      const double w = std::exp(sharpness_ * std::log(c));
+      double w;
+      if (!lobeWeight(c, sharpness_, cutoff_, &w)) continue;
       weight_[t] += w;
       sum_[t] += w * distance;
       sumSquares_[t] += w * distance * distance;
       escaped_[t] += w * escaped;
     }
+  }
+}
+
+void DistanceMomentsAccumulator::add(const DistanceLatticeWeights& weights, const float* distances) {
+  // Each ray is read by several texels: its values are worked out once.
+  rayDistance_.resize(std::size_t(weights.rays_));
+  rayEscaped_.resize(rayDistance_.size());
+  for (int r = 0; r < weights.rays_; ++r) {
+    rayDistance_[r] = std::min(double(distances[r]) / layout_.cap, 1.0);
+    rayEscaped_[r] = std::isinf(distances[r]) ? 1.0 : 0.0;
+  }
+  for (std::size_t t = 0; t < weight_.size(); ++t) {
+    const int nearest = weights.nearestRay_[t];
+    if (nearest >= 0 && weights.nearestCosine_[t] > nearestCosine_[t]) {
+      nearestCosine_[t] = weights.nearestCosine_[t];
+      nearestDistance_[t] = rayDistance_[nearest];
+      nearestEscaped_[t] = rayEscaped_[nearest];
+    }
+    double weight = weight_[t], sum = sum_[t], sumSquares = sumSquares_[t], escaped = escaped_[t];
+    for (int k = weights.texelStart_[t]; k < weights.texelStart_[t + 1]; ++k) {
+      const int r = weights.ray_[k];
+      const double w = weights.weight_[k], distance = rayDistance_[r];
+      weight += w;
+      sum += w * distance;
+      sumSquares += w * distance * distance;
+      escaped += w * rayEscaped_[r];
+    }
+    weight_[t] = weight, sum_[t] = sum, sumSquares_[t] = sumSquares, escaped_[t] = escaped;
+  }
+}
+
+DistanceLatticeWeights::DistanceLatticeWeights(const DistanceMapLayout& layout, const Eigen::Vector3f* directions,
+                                               int count)
+    : rays_(count) {
+  const double sharpness = layout.sharpness(), cutoff = std::pow(kNegligibleWeight, 1.0 / sharpness);
+  nearestRay_.assign(std::size_t(layout.texels()), -1);
+  nearestCosine_.assign(nearestRay_.size(), -2.0);
+  texelStart_.push_back(0);
+  for (int t = 0; t < layout.texels(); ++t) {
+    const Eigen::Vector3d texel = layout.texelDirection(t);
+    for (int r = 0; r < count; ++r) {
+      const double c = texel.dot(directions[r].cast<double>());
+      if (c > nearestCosine_[t]) nearestCosine_[t] = c, nearestRay_[t] = r;
+      double w;
+      if (!DistanceMomentsAccumulator::lobeWeight(c, sharpness, cutoff, &w)) continue;
+      ray_.push_back(r);
+      weight_.push_back(w);
+    }
+    texelStart_.push_back(int(ray_.size()));
   }
 }
 

@@ -43,6 +43,24 @@ struct DistanceMapLayout {
 Eigen::Vector2d octahedralEncode(const Eigen::Vector3d& d);
 Eigen::Vector3d octahedralDecode(const Eigen::Vector2d& uv);
 
+// Each texel's weights for one fixed set of directions, worked out once: a bake's fixed lattices
+// are a few rotations of one set, and working out 64 powers per ray for every probe took a
+// quarter of a bake. Per texel, the rays its lobe reaches, in ray order, and its nearest ray.
+class DistanceLatticeWeights {
+ public:
+  DistanceLatticeWeights(const DistanceMapLayout& layout, const Eigen::Vector3f* directions, int count);
+  int rays() const { return rays_; }
+
+ private:
+  friend class DistanceMomentsAccumulator;
+  int rays_;
+  std::vector<int> texelStart_;  // texel t's rays are entries texelStart_[t] to texelStart_[t + 1]
+  std::vector<int> ray_;
+  std::vector<double> weight_;
+  std::vector<int> nearestRay_;
+  std::vector<double> nearestCosine_;
+};
+
 // Accumulates one probe's rays (in any number of batches, always in the same order: the sums are
 // the same at any thread count).
 class DistanceMomentsAccumulator {
@@ -52,6 +70,10 @@ class DistanceMomentsAccumulator {
   // `distances[r]`: to the first hit along unit `directions[r]`, or +∞ when the ray escaped. The
   // rays are a lattice's: each weighs the same.
   void add(const Eigen::Vector3f* directions, const float* distances, int count);
+  // The same sums, bit for bit, for the set of directions `weights` was made for.
+  void add(const DistanceLatticeWeights& weights, const float* distances);
+  // max(0, c·ω)^k, 0 where it is negligible (what add weighs a ray with), and whether it is not.
+  static bool lobeWeight(double cosine, double sharpness, double cutoff, double* weight);
   // 2·texels values in units of the cap, then (with skyVisibility) texels escaped shares; a texel
   // whose lobe no ray reached holds the nearest ray's.
   void write(float* moments) const;
@@ -63,6 +85,7 @@ class DistanceMomentsAccumulator {
   std::vector<double> weight_, sum_, sumSquares_, escaped_;
   // Per texel, the ray closest to it: what a texel no lobe reaches holds (with few rays, large N).
   std::vector<double> nearestCosine_, nearestDistance_, nearestEscaped_;
+  std::vector<double> rayDistance_, rayEscaped_;  // per ray of the lattice being added
 };
 
 // The four texels a read at direction d blends, bilinearly between texel centres (clamped at the
