@@ -32,6 +32,9 @@ constexpr float kShadowShortening = 1e-4f;
 // random draws stay scalar, around the lanes.
 constexpr int kLanes = 8;
 using Lanes = Eigen::Array<float, kLanes, 1>;
+// The quantities of an emitter shadow ray that go into lanes: the vector to the point, the
+// vertex's normal, the emitter's normal, its area density.
+constexpr std::size_t kEmitterLaneArrays = 10;
 
 // Correctly rounded square roots, as std::sqrt gives (this file is built without errno for
 // math functions, so the loop becomes a vector square root): Eigen's packet sqrt is by default
@@ -126,6 +129,9 @@ struct PathIntegrator::Scratch {
   ScratchBuffer<Pending> pending;
   ScratchBuffer<bool> blocked;
   ScratchBuffer<EmitterPoint> points;
+  // The emitter shadow rays' geometry, one array per quantity (kEmitterLaneArrays of them, each
+  // padded to whole blocks of lanes), read into lanes with one load each.
+  ScratchBuffer<float> emitterLanes;
   ScratchBuffer<SurfacePoint> emitterSurfaces;  // of the points on textured or alpha-tested emitters
   ScratchBuffer<float> pdfs;
   ScratchBuffer<Aimed> aimed;
@@ -321,33 +327,40 @@ void PathIntegrator::addEmitterEvents(Vertex* vertices, int count, Scratch& scra
   ShadowBatch batch(scratch, std::size_t(count));
   Scratch::EmitterPoint* points = scratch.points.reserve(std::size_t(count));
   SurfacePoint* surfaces = scratch.emitterSurfaces.reserve(std::size_t(count));
+  // Written as each point is drawn, where the vertex and the emitter are at hand, rather than
+  // gathered lane by lane through their pointers. A short last block repeats its last point in
+  // the lanes past it; what they compute is not read.
+  const std::size_t padded = std::size_t((count + kLanes - 1) / kLanes * kLanes);
+  float* lane = scratch.emitterLanes.reserve(kEmitterLaneArrays * padded);
+  float *dxs = lane, *dys = lane + padded, *dzs = lane + 2 * padded, *nxs = lane + 3 * padded,
+        *nys = lane + 4 * padded, *nzs = lane + 5 * padded, *fxs = lane + 6 * padded, *fys = lane + 7 * padded,
+        *fzs = lane + 8 * padded, *pdfs = lane + 9 * padded;
   for (int k = 0; k < count; ++k) {
     PathRandom& random = vertices[k].random;
-    const float xiChoice = random.uniform(), xi1 = random.uniform(), xi2 = random.uniform();
-    const float xiCoverage = random.uniform();
+    float xiChoice, xi1, xi2, xiCoverage;
+    random.uniformPair(&xiChoice, &xi1);
+    random.uniformPair(&xi2, &xiCoverage);
     points[k] = {&vertices[k], emitters_.sample(xiChoice, xi1, xi2), xiCoverage};
     const EmitterSampler::Sample& s = points[k].sample;
     if (s.emitter->textured || s.emitter->alphaTested) {
       locateSurface(scene_, s.emitter->mesh, s.emitter->triangle, s.u, s.v, &surfaces[k]);
       prefetchSurface(surfaces[k]);
     }
+    const Vertex& v = vertices[k];
+    const EmitterSampler::Emitter& e = *s.emitter;
+    dxs[k] = s.point.x() - v.origin.x(), dys[k] = s.point.y() - v.origin.y(), dzs[k] = s.point.z() - v.origin.z();
+    nxs[k] = v.normal.x(), nys[k] = v.normal.y(), nzs[k] = v.normal.z();
+    fxs[k] = e.frontNormal.x(), fys[k] = e.frontNormal.y(), fzs[k] = e.frontNormal.z();
+    pdfs[k] = e.pdfArea;
   }
+  for (std::size_t k = std::size_t(count); k < padded; ++k)
+    for (std::size_t a = 0; a < kEmitterLaneArrays; ++a) lane[a * padded + k] = lane[a * padded + std::size_t(count) - 1];
   for (int first = 0; first < count; first += kLanes) {
     const int n = std::min(kLanes, count - first);
-    // The geometry of each vertex's shadow ray, in lanes. Lanes past the last vertex repeat
-    // it (nothing is drawn here); what they compute is not read.
-    Lanes dx, dy, dz, nx, ny, nz, fx, fy, fz, pdfArea;
-    for (int j = 0; j < kLanes; ++j) {
-      const Scratch::EmitterPoint& point = points[first + std::min(j, n - 1)];
-      const Vertex& v = *point.vertex;
-      const EmitterSampler::Emitter& e = *point.sample.emitter;
-      dx[j] = point.sample.point.x() - v.origin.x();
-      dy[j] = point.sample.point.y() - v.origin.y();
-      dz[j] = point.sample.point.z() - v.origin.z();
-      nx[j] = v.normal.x(), ny[j] = v.normal.y(), nz[j] = v.normal.z();
-      fx[j] = e.frontNormal.x(), fy[j] = e.frontNormal.y(), fz[j] = e.frontNormal.z();
-      pdfArea[j] = e.pdfArea;
-    }
+    // The geometry of each vertex's shadow ray, in lanes.
+    const auto load = [&](const float* values) -> Lanes { return Eigen::Map<const Lanes>(values + first); };
+    const Lanes dx = load(dxs), dy = load(dys), dz = load(dzs), nx = load(nxs), ny = load(nys), nz = load(nzs);
+    const Lanes fx = load(fxs), fy = load(fys), fz = load(fzs), pdfArea = load(pdfs);
     // Sums of three terms as Eigen's Vector3f squaredNorm and dot add them (its unrolled
     // reduction splits three as one and two): x + (y + z).
     const Lanes squaredDistance = dx * dx + (dy * dy + dz * dz);
@@ -387,7 +400,8 @@ void PathIntegrator::addEnvironmentEvents(Vertex* vertices, int count, Scratch& 
   ShadowBatch batch(scratch, std::size_t(count));
   for (int k = 0; k < count; ++k) {
     Vertex& v = vertices[k];
-    const float xi1 = v.random.uniform(), xi2 = v.random.uniform();
+    float xi1, xi2;
+    v.random.uniformPair(&xi1, &xi2);
     const Environment::Sample s = sky.sample(xi1, xi2);
     const float cosine = v.normal.dot(s.direction);
     if (!(s.pdf > 0.0f) || cosine <= 0.0f) continue;
@@ -413,7 +427,9 @@ void PathIntegrator::aimAtLights(Vertex* vertices, int count, Scratch& scratch, 
   int aimedRays = 0;
   for (int k = 0; k < count; ++k) {
     Vertex& v = vertices[k];
-    const float xiChoice = v.random.uniform(), xi1 = v.random.uniform(), xi2 = v.random.uniform();
+    float xiChoice, xi1;
+    v.random.uniformPair(&xiChoice, &xi1);
+    const float xi2 = v.random.uniform();
     double total = 0.0;
     for (std::size_t j = 0; j < aimable.size(); ++j) {
       weights[j] = lightAim_.weight(aimable[j], v.origin);
@@ -495,8 +511,7 @@ int PathIntegrator::sampleContinuations(Vertex* vertices, int count, Ray* rays, 
     for (int j = 0; j < n; ++j) {
       Vertex& v = vertices[first + j];
       nx[j] = v.normal.x(), ny[j] = v.normal.y(), nz[j] = v.normal.z();
-      xi1[j] = v.random.uniform();
-      xi2[j] = v.random.uniform();
+      v.random.uniformPair(&xi1[j], &xi2[j]);
     }
     const CosineDirections directions = cosineDirections(nx, ny, nz, xi1, xi2);
     for (int j = 0; j < n; ++j) {

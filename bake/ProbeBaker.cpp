@@ -205,6 +205,25 @@ void ProbeBaker::buildIrradianceOperators(const std::vector<DirectionSet>& sets)
     if (!directView_.empty() || settings_.convergence.adaptive()) group.fromDirect = fromSh;
     if (settings_.projection.nonNegative) group.gram = ops.gram();
   }
+  // Deltas are expanded only up to the last SH band an operator reads: a basis of low degree
+  // takes nothing from higher bands (sh-l2 reads bands 0-2 of the lattice's 0-15 at 1024 rays),
+  // their columns are exact zeros, and evaluating and summing them took a fifth of a bake.
+  if (punctualAtProbe) {
+    punctualHarmonics_ = SphericalHarmonics(lastBandRead(&ChannelGroup::fromPunctual, punctual_.shOrder()));
+    punctualExpansion_ = &punctualHarmonics_;
+    for (ChannelGroup& group : groups_) group.fromPunctual = group.fromPunctual.leftCols(punctualHarmonics_.count()).eval();
+  }
+  if (groups_.front().fromDirect.size()) {
+    directHarmonics_ = SphericalHarmonics(lastBandRead(&ChannelGroup::fromDirect, shOrder_));
+    for (ChannelGroup& group : groups_) group.fromDirect = group.fromDirect.leftCols(directHarmonics_.count()).eval();
+  }
+}
+
+int ProbeBaker::lastBandRead(const Eigen::MatrixXd ChannelGroup::*shOperator, int order) const {
+  for (int band = order; band > 0; band -= 1)  // (not "--band": a flag, to scripts/check_layers.py)
+    for (const ChannelGroup& group : groups_)
+      if (!(group.*shOperator).middleCols(band * band, 2 * band + 1).isZero(0.0)) return band;
+  return 0;
 }
 
 // The rounds' moments m become c = (BᵀWB)⁻¹m, the least-squares fit of the probe's own rays that

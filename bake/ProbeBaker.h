@@ -108,11 +108,13 @@ class ProbeBaker {
   // direct view sampled by importance and combined by MIS, path vertices aiming at lights.
   // Volumes before it record none (one fixed set of eight rotations, the lattice alone). /2:
   // the operators hold exact zeros where /1 held quadrature rounding (±1e-17), so coefficients
-  // that are zero in exact arithmetic are stored as zeros; nothing else differs.
-  static constexpr const char* kSampler = "seeded-lattice+direct-view-mis+aimed-bounces/2";
+  // that are zero in exact arithmetic are stored as zeros; nothing else differs. /3: a path
+  // vertex draws its random numbers two from one scrambled counter (PathRandom::uniformPair), so
+  // paths beyond the first hit take other, equally distributed, numbers than /2's.
+  static constexpr const char* kSampler = "seeded-lattice+direct-view-mis+aimed-bounces/3";
   // With adaptive convergence: rounds of two lattices that double, each in the probe's own
   // rotation (ConvergenceSettings).
-  static constexpr const char* kAdaptiveSampler = "doubling-lattice-rounds+direct-view-mis+aimed-bounces/2";
+  static constexpr const char* kAdaptiveSampler = "doubling-lattice-rounds+direct-view-mis+aimed-bounces/3";
   static const char* samplerName(const BakeSettings& settings) {
     return settings.convergence.adaptive() ? kAdaptiveSampler : kSampler;
   }
@@ -166,6 +168,8 @@ class ProbeBaker {
   // Each group's operators from the rotated lattices (and the deltas' expansion) to coefficients.
   void buildIrradianceOperators(const std::vector<DirectionSet>& sets);
   void buildRadianceOperators(const std::vector<DirectionSet>& sets);
+  // The last SH band, up to `order`, whose columns in some group's operator are not all zero.
+  int lastBandRead(const Eigen::MatrixXd ChannelGroup::*shOperator, int order) const;
   struct Rounds {
     std::int64_t rays;
     bool converged;
@@ -216,7 +220,7 @@ class ProbeBaker {
   // Deltas (lights, direct-view samples, adaptive lattices) are expanded in these functions before
   // each group's operator: SH for irradiance (the punctual lights' order, the lattice's for the
   // rest), for radiance the basis's own functions (`ownFunctions_`).
-  SphericalHarmonics directHarmonics_{0};
+  SphericalHarmonics directHarmonics_{0}, punctualHarmonics_{0};
   StackedFunctions ownFunctions_;
   const SphericalFunctions* punctualExpansion_ = nullptr;
   const SphericalFunctions* directExpansion_ = nullptr;
