@@ -460,7 +460,7 @@ void ProbeBaker::traceLattice(const ProbeTask& task, const RotationBlocks& rotat
   const int skyParts = (rotations.width - 4) / 3;
   integrator_.trace(task.position, task.id, dirs.data(), rays, radiance.data(), sky.data(), counts, &view,
                     distances ? hitDistance.data() : nullptr, skyParts > 1 ? bounced.data() : nullptr);
-  if (distances) distances->add(distanceWeights_[block.rotation], hitDistance.data());
+  if (distances) distances->add(distanceWeights_.at(std::size_t(block.rotation)), hitDistance.data());
   const int base = rotations.width * block.first;
   for (int r = 0; r < rays; ++r) {
     const Eigen::Vector3f value = toColorSpace(basis_.colorSpace(), radiance[r]);

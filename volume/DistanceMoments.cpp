@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace baker {
 namespace {
@@ -79,6 +80,8 @@ void DistanceMomentsAccumulator::add(const Eigen::Vector3f* directions, const fl
 }
 
 void DistanceMomentsAccumulator::add(const DistanceLatticeWeights& weights, const float* distances) {
+  if (weights.texelStart_.size() != weight_.size() + 1)
+    throw std::logic_error("DistanceMomentsAccumulator: lattice weights of a map of another size");
   // Each ray is read by several texels: its values are worked out once.
   rayDistance_.resize(std::size_t(weights.rays_));
   rayEscaped_.resize(rayDistance_.size());

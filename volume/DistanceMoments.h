@@ -49,7 +49,6 @@ Eigen::Vector3d octahedralDecode(const Eigen::Vector2d& uv);
 class DistanceLatticeWeights {
  public:
   DistanceLatticeWeights(const DistanceMapLayout& layout, const Eigen::Vector3f* directions, int count);
-  int rays() const { return rays_; }
 
  private:
   friend class DistanceMomentsAccumulator;
@@ -70,7 +69,8 @@ class DistanceMomentsAccumulator {
   // `distances[r]`: to the first hit along unit `directions[r]`, or +∞ when the ray escaped. The
   // rays are a lattice's: each weighs the same.
   void add(const Eigen::Vector3f* directions, const float* distances, int count);
-  // The same sums, bit for bit, for the set of directions `weights` was made for.
+  // The same sums, bit for bit, for the set of directions `weights` was made for (std::logic_error
+  // for weights of a map of another size).
   void add(const DistanceLatticeWeights& weights, const float* distances);
   // max(0, c·ω)^k, 0 where it is negligible (what add weighs a ray with), and whether it is not.
   static bool lobeWeight(double cosine, double sharpness, double cutoff, double* weight);
