@@ -334,7 +334,7 @@ void PathIntegrator::addEmitterEvents(Vertex* vertices, int count, Scratch& scra
   float* lane = scratch.emitterLanes.reserve(kEmitterLaneArrays * padded);
   float *dxs = lane, *dys = lane + padded, *dzs = lane + 2 * padded, *nxs = lane + 3 * padded,
         *nys = lane + 4 * padded, *nzs = lane + 5 * padded, *fxs = lane + 6 * padded, *fys = lane + 7 * padded,
-        *fzs = lane + 8 * padded, *pdfs = lane + 9 * padded;
+        *fzs = lane + 8 * padded, *areaDensities = lane + 9 * padded;
   for (int k = 0; k < count; ++k) {
     PathRandom& random = vertices[k].random;
     float xiChoice, xi1, xi2, xiCoverage;
@@ -351,7 +351,7 @@ void PathIntegrator::addEmitterEvents(Vertex* vertices, int count, Scratch& scra
     dxs[k] = s.point.x() - v.origin.x(), dys[k] = s.point.y() - v.origin.y(), dzs[k] = s.point.z() - v.origin.z();
     nxs[k] = v.normal.x(), nys[k] = v.normal.y(), nzs[k] = v.normal.z();
     fxs[k] = e.frontNormal.x(), fys[k] = e.frontNormal.y(), fzs[k] = e.frontNormal.z();
-    pdfs[k] = e.pdfArea;
+    areaDensities[k] = e.pdfArea;
   }
   for (std::size_t k = std::size_t(count); k < padded; ++k)
     for (std::size_t a = 0; a < kEmitterLaneArrays; ++a) lane[a * padded + k] = lane[a * padded + std::size_t(count) - 1];
@@ -360,7 +360,7 @@ void PathIntegrator::addEmitterEvents(Vertex* vertices, int count, Scratch& scra
     // The geometry of each vertex's shadow ray, in lanes.
     const auto load = [&](const float* values) -> Lanes { return Eigen::Map<const Lanes>(values + first); };
     const Lanes dx = load(dxs), dy = load(dys), dz = load(dzs), nx = load(nxs), ny = load(nys), nz = load(nzs);
-    const Lanes fx = load(fxs), fy = load(fys), fz = load(fzs), pdfArea = load(pdfs);
+    const Lanes fx = load(fxs), fy = load(fys), fz = load(fzs), pdfArea = load(areaDensities);
     // Sums of three terms as Eigen's Vector3f squaredNorm and dot add them (its unrolled
     // reduction splits three as one and two): x + (y + z).
     const Lanes squaredDistance = dx * dx + (dy * dy + dz * dz);

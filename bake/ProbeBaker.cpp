@@ -164,7 +164,7 @@ ProbeBaker::ProbeBaker(const Scene& scene, const RayTracer& tracer, const Basis&
     for (const Eigen::Vector3d& v : sets.back().directions) d.push_back(v.cast<float>());
     directions_.push_back(std::move(d));
   }
-  if (settings.distanceMapSize > 0 && !settings.convergence.adaptive())
+  if (settings.distanceMapSize > 0 && !settings.convergence.adaptive() && settings.rays <= kMostRaysWithDistanceWeights)
     for (const std::vector<Eigen::Vector3f>& d : directions_)
       distanceWeights_.emplace_back(DistanceMapLayout::baked(settings.distanceMapSize, 0.0), d.data(), int(d.size()));
   for (int c = 0; c < 3; ++c) {
@@ -391,8 +391,8 @@ ProbeBaker::Rounds ProbeBaker::traceRounds(const ProbeTask& task, const std::vec
 }
 
 // Arrivals, per probe and channel in the colour space, expanded in a function set: for
-// irradiance SH of the punctual lights (to their own order) and of the direct-view samples (to
-// the lattice's); for radiance the basis's own moments.
+// irradiance SH of the punctual lights and of the direct-view samples (up to the last band the
+// operators read); for radiance the basis's own moments.
 struct ProbeBaker::ArrivalExpansion {
   ArrivalExpansion(const SphericalFunctions& f, int probes) : functions(&f) { values.setZero(f.count(), 3 * probes); }
   const SphericalFunctions* functions;
@@ -460,7 +460,10 @@ void ProbeBaker::traceLattice(const ProbeTask& task, const RotationBlocks& rotat
   const int skyParts = (rotations.width - 4) / 3;
   integrator_.trace(task.position, task.id, dirs.data(), rays, radiance.data(), sky.data(), counts, &view,
                     distances ? hitDistance.data() : nullptr, skyParts > 1 ? bounced.data() : nullptr);
-  if (distances) distances->add(distanceWeights_.at(std::size_t(block.rotation)), hitDistance.data());
+  if (distances && !distanceWeights_.empty())
+    distances->add(distanceWeights_.at(std::size_t(block.rotation)), hitDistance.data());
+  else if (distances)
+    distances->add(dirs.data(), hitDistance.data(), rays);
   const int base = rotations.width * block.first;
   for (int r = 0; r < rays; ++r) {
     const Eigen::Vector3f value = toColorSpace(basis_.colorSpace(), radiance[r]);

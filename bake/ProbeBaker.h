@@ -110,7 +110,7 @@ class ProbeBaker {
   // the operators hold exact zeros where /1 held quadrature rounding (±1e-17), so coefficients
   // that are zero in exact arithmetic are stored as zeros; nothing else differs. /3: a path
   // vertex draws its random numbers two from one scrambled counter (PathRandom::uniformPair), so
-  // paths beyond the first hit take other, equally distributed, numbers than /2's.
+  // paths take other, equally distributed, numbers than /2's from their first hit's next events on.
   static constexpr const char* kSampler = "seeded-lattice+direct-view-mis+aimed-bounces/3";
   // With adaptive convergence: rounds of two lattices that double, each in the probe's own
   // rotation (ConvergenceSettings).
@@ -122,6 +122,9 @@ class ProbeBaker {
   // The sample fit never goes beyond this SH order: the clamped cosine's band 16 is 0.15 % of
   // band 0, and the fit's cost grows with the square of the SH count.
   static constexpr int kMaxSampleShOrder = 16;
+  // Fixed lattices up to this size have their distance-map weights worked out once per rotation
+  // (about 9 weights a ray, 12 bytes each, per rotation); larger ones work them out ray by ray.
+  static constexpr int kMostRaysWithDistanceWeights = 1 << 16;
 
   ProbeBaker(const Scene& scene, const RayTracer& tracer, const Basis& basis, const BakeSettings& settings,
              int rotations);
@@ -218,8 +221,9 @@ class ProbeBaker {
   std::vector<double> weights_;
   std::vector<DistanceLatticeWeights> distanceWeights_;  // per rotation, for fixed lattices' distance moments
   // Deltas (lights, direct-view samples, adaptive lattices) are expanded in these functions before
-  // each group's operator: SH for irradiance (the punctual lights' order, the lattice's for the
-  // rest), for radiance the basis's own functions (`ownFunctions_`).
+  // each group's operator: SH for irradiance (up to the last band the operators read, of the
+  // punctual lights' order and of the lattice's), for radiance the basis's own functions
+  // (`ownFunctions_`).
   SphericalHarmonics directHarmonics_{0}, punctualHarmonics_{0};
   StackedFunctions ownFunctions_;
   const SphericalFunctions* punctualExpansion_ = nullptr;

@@ -13,6 +13,8 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <random>
+#include <stdexcept>
+#include <utility>
 
 #include "common/Error.h"
 #include "decoders/baker_irradiance.h"
@@ -72,32 +74,40 @@ TEST(DistanceMoments, MomentsOfConstantDistancesAreExact) {
 }
 
 // A fixed lattice's weights, worked out once (what a bake's fixed lattices use), give the very
-// sums of working them out ray by ray: the same moments bit for bit, after the same earlier rays.
+// sums of working them out ray by ray, bit for bit in double: on an 8 × 8 map that 300 rays
+// cover, and on a 16 × 16 map that 4 rays leave mostly unreached (texels that hold their nearest
+// ray), alone and after earlier rays, with a ray repeated (the first of equal cosines is nearest).
 TEST(DistanceMoments, LatticeWeightsWorkedOutOnceGiveTheSameSums) {
-  const DistanceMapLayout layout = DistanceMapLayout::baked(8, 1.5);
   std::mt19937 rng(kSeed + 2);
   std::uniform_real_distribution<float> reach(0.05f, 2.5f);
-  std::vector<Eigen::Vector3f> earlier(37), directions(300);
-  std::vector<float> earlierDistances(earlier.size()), distances(directions.size());
-  for (Eigen::Vector3f& d : earlier) d = test::randomDirection(rng).cast<float>();
-  for (Eigen::Vector3f& d : directions) d = test::randomDirection(rng).cast<float>();
-  for (float& r : earlierDistances) r = reach(rng);
-  for (std::size_t r = 0; r < distances.size(); ++r)
-    distances[r] = r % 5 == 0 ? std::numeric_limits<float>::infinity() : reach(rng);
-  const DistanceLatticeWeights weights(layout, directions.data(), int(directions.size()));
-  for (const bool withEarlier : {false, true}) {
-    DistanceMomentsAccumulator rayByRay(layout), once(layout);
-    if (withEarlier) {
-      rayByRay.add(earlier.data(), earlierDistances.data(), int(earlier.size()));
-      once.add(earlier.data(), earlierDistances.data(), int(earlier.size()));
+  for (const auto& [size, rays] : {std::pair{8, 300}, std::pair{16, 4}}) {
+    const DistanceMapLayout layout = DistanceMapLayout::baked(size, 1.5);
+    std::vector<Eigen::Vector3f> earlier(5), directions(static_cast<std::size_t>(rays));
+    std::vector<float> earlierDistances(earlier.size()), distances(directions.size());
+    for (Eigen::Vector3f& d : earlier) d = test::randomDirection(rng).cast<float>();
+    for (Eigen::Vector3f& d : directions) d = test::randomDirection(rng).cast<float>();
+    directions.back() = directions.front();
+    for (float& r : earlierDistances) r = reach(rng);
+    for (std::size_t r = 0; r < distances.size(); ++r)
+      distances[r] = r % 3 == 1 ? std::numeric_limits<float>::infinity() : reach(rng);
+    const DistanceLatticeWeights weights(layout, directions.data(), rays);
+    for (const bool withEarlier : {false, true}) {
+      DistanceMomentsAccumulator rayByRay(layout), once(layout);
+      if (withEarlier) {
+        rayByRay.add(earlier.data(), earlierDistances.data(), int(earlier.size()));
+        once.add(earlier.data(), earlierDistances.data(), int(earlier.size()));
+      }
+      rayByRay.add(directions.data(), distances.data(), rays);
+      once.add(weights, distances.data());
+      EXPECT_TRUE(once.holdsTheSameSumsAs(rayByRay)) << size << " texels a side, " << rays << " rays"
+                                                     << (withEarlier ? ", after earlier rays" : "");
     }
-    rayByRay.add(directions.data(), distances.data(), int(directions.size()));
-    once.add(weights, distances.data());
-    std::vector<float> expected(std::size_t(layout.valuesPerProbe())), got(expected.size());
-    rayByRay.write(expected.data());
-    once.write(got.data());
-    EXPECT_EQ(got, expected) << (withEarlier ? "after earlier rays" : "alone");
   }
+  DistanceMomentsAccumulator other(DistanceMapLayout::baked(4, 1.0));
+  const std::vector<Eigen::Vector3f> one = {Eigen::Vector3f::UnitY()};
+  const std::vector<float> distance = {1.0f};
+  EXPECT_THROW(other.add(DistanceLatticeWeights(DistanceMapLayout::baked(8, 1.0), one.data(), 1), distance.data()),
+               std::logic_error);
 }
 
 // The mean, over the texel's lobe max(0, c·ω)^k, of the distance to a floor `height` below:

@@ -115,11 +115,14 @@ DistanceLatticeWeights::DistanceLatticeWeights(const DistanceMapLayout& layout, 
   const double sharpness = layout.sharpness(), cutoff = std::pow(kNegligibleWeight, 1.0 / sharpness);
   nearestRay_.assign(std::size_t(layout.texels()), -1);
   nearestCosine_.assign(nearestRay_.size(), -2.0);
+  texelStart_.reserve(std::size_t(layout.texels()) + 1);
   texelStart_.push_back(0);
   for (int t = 0; t < layout.texels(); ++t) {
     const Eigen::Vector3d texel = layout.texelDirection(t);
     for (int r = 0; r < count; ++r) {
-      const double c = texel.dot(directions[r].cast<double>());
+      // As the ray-by-ray sums take it: a cosine of a cast expression adds its terms in another order.
+      const Eigen::Vector3d d = directions[r].cast<double>();
+      const double c = texel.dot(d);
       if (c > nearestCosine_[t]) nearestCosine_[t] = c, nearestRay_[t] = r;
       double w;
       if (!DistanceMomentsAccumulator::lobeWeight(c, sharpness, cutoff, &w)) continue;
@@ -128,6 +131,12 @@ DistanceLatticeWeights::DistanceLatticeWeights(const DistanceMapLayout& layout, 
     }
     texelStart_.push_back(int(ray_.size()));
   }
+}
+
+bool DistanceMomentsAccumulator::holdsTheSameSumsAs(const DistanceMomentsAccumulator& other) const {
+  return weight_ == other.weight_ && sum_ == other.sum_ && sumSquares_ == other.sumSquares_ &&
+         escaped_ == other.escaped_ && nearestCosine_ == other.nearestCosine_ &&
+         nearestDistance_ == other.nearestDistance_ && nearestEscaped_ == other.nearestEscaped_;
 }
 
 void DistanceMomentsAccumulator::write(float* moments) const {

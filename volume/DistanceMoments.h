@@ -72,6 +72,8 @@ class DistanceMomentsAccumulator {
   // The same sums, bit for bit, for the set of directions `weights` was made for (std::logic_error
   // for weights of a map of another size).
   void add(const DistanceLatticeWeights& weights, const float* distances);
+  // Whether `other` holds the very same sums and nearest rays, bit for bit.
+  bool holdsTheSameSumsAs(const DistanceMomentsAccumulator& other) const;
   // max(0, c·ω)^k, 0 where it is negligible (what add weighs a ray with), and whether it is not.
   static bool lobeWeight(double cosine, double sharpness, double cutoff, double* weight);
   // 2·texels values in units of the cap, then (with skyVisibility) texels escaped shares; a texel
