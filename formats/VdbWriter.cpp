@@ -5,6 +5,8 @@
 #include <openvdb/io/GridDescriptor.h>
 #include <openvdb/io/io.h>
 #include <openvdb/openvdb.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -12,7 +14,9 @@
 #include <cstring>
 #include <fstream>
 #include <memory>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "formats/AtomicFile.h"
 #include "formats/VdbChecksum.h"
@@ -75,16 +79,22 @@ openvdb::MetaMap fileMetadata(const Volume& v, const Basis& basis, bool hasProbe
 // Why the last file operation failed, as far as the C library says.
 std::string failureReason() { return errno != 0 ? std::strerror(errno) : "the output stream failed"; }
 
-// OpenVDB's public writer takes every grid at once, so all of a volume's grids (20 for sh-l2)
-// would be alive together, each with its own 32³ and 16³ internal nodes: about 8 MB touched
-// for the first time, which costs more than the rest of the write on a small volume. Writing
-// one grid at a time lets each grid's freed nodes serve the next. Archive's protected members
-// write the same header and grid records as File::write, given what holds for our grids: none
-// is null, their names are unique and not empty (so File::write would rename none), and none
-// shares its tree with another (so none would be written as an instance).
+// OpenVDB's public writer takes every grid at once, so all of a volume's grids (228 for sh-l2
+// with distance maps) would be alive together, each with its own 32³ and 16³ internal nodes.
+// Writing a few grids at a time bounds that; Archive's protected members write the same header
+// and grid records as File::write, given what holds for our grids: none is null, their names are
+// unique and not empty (so File::write would rename none), and none shares its tree with another
+// (so none would be written as an instance).
+//
+// A grid's record does not depend on what precedes it but for three stream positions (where its
+// data starts, where its buffers start, where it ends), so the grids of a batch are built and
+// serialised side by side, each into its own buffer from position 0, and the positions are moved
+// by where the record lands in the file. Most of a write is per grid (building the tree, its
+// statistics, compressing its topology and buffers): this spreads it over the cores, and the file
+// is the same bytes at any thread count.
 class GridByGridArchive : public openvdb::io::Archive {
  public:
-  // `gridAt(i)` builds grid i; it is written, then released before grid i + 1 is built.
+  // `gridAt(i)` builds grid i; it is called from several threads at once.
   template <typename GridAt>
   void writeGrids(std::ostream& os, const std::string& path, const openvdb::MetaMap& metadata, std::int32_t gridCount,
                   GridAt gridAt) const {
@@ -95,15 +105,49 @@ class GridByGridArchive : public openvdb::io::Archive {
     writeHeader(os, /*seekable=*/true);
     metadata.writeMeta(os);
     os.write(reinterpret_cast<const char*>(&gridCount), sizeof gridCount);
-    for (std::int32_t index = 0; index < gridCount; ++index) {
-      const openvdb::GridBase::ConstPtr grid = gridAt(index);
-      openvdb::io::GridDescriptor descriptor(grid->getName(), grid->type(), grid->saveFloatAsHalf());
-      writeGrid(descriptor, grid, os, /*seekable=*/true);
-      // As File::write does after each grid (writeGrid may change the flags for some grid classes).
-      openvdb::io::setDataCompression(os, compression());
-      if (!os) throw std::runtime_error(fmt::format("{}: cannot write OpenVDB file: {}", path, failureReason()));
+    const std::int32_t batch = std::max(1, 2 * tbb::this_task_arena::max_concurrency());
+    std::vector<GridRecord> records;
+    for (std::int32_t first = 0; first < gridCount; first += batch) {
+      records.assign(std::size_t(std::min(batch, gridCount - first)), GridRecord());
+      tbb::parallel_for(0, int(records.size()), [&](int k) { records[std::size_t(k)] = record(os, gridAt(first + k)); });
+      for (GridRecord& r : records) {
+        append(os, r);
+        if (!os) throw std::runtime_error(fmt::format("{}: cannot write OpenVDB file: {}", path, failureReason()));
+      }
     }
     openvdb::io::clearStreamMetadataPtr(os);
+  }
+
+ private:
+  struct GridRecord {
+    std::string bytes;
+    openvdb::io::GridDescriptor descriptor;
+  };
+
+  // Grid record as writeGrid puts it in a stream with the file's settings (copied from `file`:
+  // version, compression, statistics, stream metadata), starting at position 0.
+  GridRecord record(const std::ostream& file, const openvdb::GridBase::ConstPtr& grid) const {
+    std::stringstream side(std::ios::in | std::ios::out | std::ios::binary);
+    side.copyfmt(file);
+    GridRecord r;
+    r.descriptor = openvdb::io::GridDescriptor(grid->getName(), grid->type(), grid->saveFloatAsHalf());
+    writeGrid(r.descriptor, grid, side, /*seekable=*/true);
+    if (!side) throw std::runtime_error("cannot serialise an OpenVDB grid in memory");
+    r.bytes = std::move(side).str();
+    return r;
+  }
+
+  // The record at the stream's position, its three positions (written by
+  // GridDescriptor::writeStreamPos just before the grid's data) moved there.
+  static void append(std::ostream& os, GridRecord& r) {
+    const std::int64_t base = std::int64_t(os.tellp());
+    const std::int64_t positions[3] = {r.descriptor.getGridPos() + base, r.descriptor.getBlockPos() + base,
+                                       r.descriptor.getEndPos() + base};
+    const std::size_t at = std::size_t(r.descriptor.getGridPos()) - sizeof positions;
+    if (r.descriptor.getGridPos() < std::int64_t(sizeof positions) || at + sizeof positions > r.bytes.size())
+      throw std::logic_error("an OpenVDB grid record without its stream positions");
+    std::memcpy(r.bytes.data() + at, positions, sizeof positions);
+    os.write(r.bytes.data(), std::streamsize(r.bytes.size()));
   }
 };
 

@@ -44,7 +44,31 @@ TEST(DistanceMoments, OctahedralMapRoundTripsAndTexelsAreTheirOwn) {
     const Eigen::Vector2d uv = octahedralEncode(layout.texelDirection(t));
     EXPECT_EQ(int(uv.x() * 8) + 8 * int(uv.y() * 8), t);
   }
-  EXPECT_NEAR(layout.sharpness(), 28.0, 0.05);  // half weight half a texel's width away
+  // Half weight half a texel's width away, rounded to an integer power.
+  EXPECT_EQ(layout.sharpness(), 28.0);
+  EXPECT_EQ((DistanceMapLayout{16, 1.0}.sharpness()), 113.0);
+  EXPECT_EQ((DistanceMapLayout{4, 1.0}.sharpness()), 7.0);
+}
+
+// The lobe's weight is the power it stands for, and is left out exactly where it falls below 1e-4.
+TEST(DistanceMoments, TexelLobesAreTheIntegerPowerAboveTheirCutoff) {
+  for (int size : {4, 8, 16}) {
+    const DistanceMapLayout layout{size, 1.0};
+    const TexelLobes lobes(layout);
+    EXPECT_EQ(lobes.power(), int(layout.sharpness()));
+    EXPECT_NEAR(std::pow(lobes.cutoff(), lobes.power()), 1e-4, 1e-12) << size;
+    for (double c : {1.0, 0.999, 0.95, 0.9, 0.8, 0.75}) {
+      if (!lobes.reaches(c)) {
+        EXPECT_LE(c, lobes.cutoff()) << size << " " << c;
+        continue;
+      }
+      EXPECT_NEAR(lobes.weight(c), std::pow(c, lobes.power()), 1e-13 * std::pow(c, lobes.power())) << size << " " << c;
+    }
+    EXPECT_FALSE(lobes.reaches(lobes.cutoff()));
+    EXPECT_FALSE(lobes.reaches(-1.0));
+    const Eigen::Vector3d d = Eigen::Vector3d(0.3, -0.5, 0.8).normalized();
+    for (int t = 0; t < lobes.texels(); ++t) EXPECT_NEAR(lobes.cosine(t, d), layout.texelDirection(t).dot(d), 1e-15) << t;
+  }
 }
 
 // Every ray at one distance: each texel holds it and its square; every ray escaping: each texel

@@ -15,10 +15,28 @@ constexpr double kNegligibleWeight = 1e-4;
 
 }  // namespace
 
-double DistanceMapLayout::sharpness() const { return std::log(2.0) / -std::log(std::cos(std::sqrt(M_PI) / size)); }
+double DistanceMapLayout::sharpness() const {
+  return std::max(1.0, std::round(std::log(2.0) / -std::log(std::cos(std::sqrt(M_PI) / size))));
+}
 
 Eigen::Vector3d DistanceMapLayout::texelDirection(int texel) const {
   return octahedralDecode(Eigen::Vector2d((texel % size + 0.5) / size, (texel / size + 0.5) / size));
+}
+
+TexelLobes::TexelLobes(const DistanceMapLayout& layout)
+    : power_(int(layout.sharpness())), cutoff_(std::pow(kNegligibleWeight, 1.0 / power_)) {
+  for (int t = 0; t < layout.texels(); ++t) {
+    const Eigen::Vector3d d = layout.texelDirection(t);
+    x_.push_back(d.x()), y_.push_back(d.y()), z_.push_back(d.z());
+  }
+}
+
+double TexelLobes::weight(double cosine) const {
+  double result = 1.0, square = cosine;
+  for (int n = power_;; square *= square) {
+    if (n & 1) result *= square;
+    if ((n >>= 1) == 0) return result;
+  }
 }
 
 Eigen::Vector2d octahedralEncode(const Eigen::Vector3d& d) {
@@ -36,8 +54,7 @@ Eigen::Vector3d octahedralDecode(const Eigen::Vector2d& uv) {
 }
 
 DistanceMomentsAccumulator::DistanceMomentsAccumulator(const DistanceMapLayout& layout)
-    : layout_(layout), sharpness_(layout.sharpness()), cutoff_(std::pow(kNegligibleWeight, 1.0 / sharpness_)) {
-  for (int t = 0; t < layout.texels(); ++t) texelDirections_.push_back(layout.texelDirection(t));
+    : layout_(layout), lobes_(layout) {
   reset();
 }
 
@@ -49,28 +66,37 @@ void DistanceMomentsAccumulator::reset() {
   nearestCosine_.assign(weight_.size(), -2.0);
   nearestDistance_.assign(weight_.size(), 1.0);
   nearestEscaped_.assign(weight_.size(), 0.0);
-}
-
-bool DistanceMomentsAccumulator::lobeWeight(double cosine, double sharpness, double cutoff, double* weight) {
-  if (cosine <= cutoff) return false;
-  *weight = std::exp(sharpness * std::log(cosine));
-  return true;
+  unreached_ = int(weight_.size());
 }
 
 void DistanceMomentsAccumulator::add(const Eigen::Vector3f* directions, const float* distances, int count) {
+  const int texels = lobes_.texels();
+  cosines_.resize(std::size_t(texels));
+  reached_.resize(std::size_t(texels));
   for (int r = 0; r < count; ++r) {
-    const Eigen::Vector3d d = directions[r].cast<double>();
     const double distance = std::min(double(distances[r]) / layout_.cap, 1.0);
     const double escaped = std::isinf(distances[r]) ? 1.0 : 0.0;
-    for (std::size_t t = 0; t < texelDirections_.size(); ++t) {
-      const double c = texelDirections_[t].dot(d);
-      if (c > nearestCosine_[t]) {
-        nearestCosine_[t] = c;
-        nearestDistance_[t] = distance;
-        nearestEscaped_[t] = escaped;
-      }
-      double w;
-      if (!lobeWeight(c, sharpness_, cutoff_, &w)) continue;
+    // A ray reaches a sixth of the texels or fewer: they are listed without a branch (one taken at
+    // random for a sixth of 64 texels mispredicts several times a ray), then summed.
+    const Eigen::Vector3d d = directions[r].cast<double>();
+    int reached = 0;
+    for (int t = 0; t < texels; ++t) {
+      const double c = lobes_.cosine(t, d);
+      cosines_[std::size_t(t)] = c;
+      reached_[std::size_t(reached)] = t;
+      reached += lobes_.reaches(c);
+    }
+    if (unreached_ > 0)
+      for (int t = 0; t < texels; ++t)
+        if (cosines_[t] > nearestCosine_[t]) {
+          nearestCosine_[t] = cosines_[t];
+          nearestDistance_[t] = distance;
+          nearestEscaped_[t] = escaped;
+        }
+    for (int k = 0; k < reached; ++k) {
+      const std::size_t t = std::size_t(reached_[std::size_t(k)]);
+      const double w = lobes_.weight(cosines_[t]);
+      unreached_ -= weight_[t] == 0.0;
       weight_[t] += w;
       sum_[t] += w * distance;
       sumSquares_[t] += w * distance * distance;
@@ -107,36 +133,38 @@ void DistanceMomentsAccumulator::add(const DistanceLatticeWeights& weights, cons
     }
     weight_[t] = weight, sum_[t] = sum, sumSquares_[t] = sumSquares, escaped_[t] = escaped;
   }
+  unreached_ = int(std::count(weight_.begin(), weight_.end(), 0.0));
 }
 
 DistanceLatticeWeights::DistanceLatticeWeights(const DistanceMapLayout& layout, const Eigen::Vector3f* directions,
                                                int count)
     : rays_(count) {
-  const double sharpness = layout.sharpness(), cutoff = std::pow(kNegligibleWeight, 1.0 / sharpness);
+  const TexelLobes lobes(layout);
   nearestRay_.assign(std::size_t(layout.texels()), -1);
   nearestCosine_.assign(nearestRay_.size(), -2.0);
   texelStart_.reserve(std::size_t(layout.texels()) + 1);
   texelStart_.push_back(0);
   for (int t = 0; t < layout.texels(); ++t) {
-    const Eigen::Vector3d texel = layout.texelDirection(t);
     for (int r = 0; r < count; ++r) {
-      // As the ray-by-ray sums take it: a cosine of a cast expression adds its terms in another order.
-      const Eigen::Vector3d d = directions[r].cast<double>();
-      const double c = texel.dot(d);
+      const double c = lobes.cosine(t, directions[r].cast<double>());
       if (c > nearestCosine_[t]) nearestCosine_[t] = c, nearestRay_[t] = r;
-      double w;
-      if (!DistanceMomentsAccumulator::lobeWeight(c, sharpness, cutoff, &w)) continue;
+      if (!lobes.reaches(c)) continue;
       ray_.push_back(r);
-      weight_.push_back(w);
+      weight_.push_back(lobes.weight(c));
     }
     texelStart_.push_back(int(ray_.size()));
   }
 }
 
 bool DistanceMomentsAccumulator::holdsTheSameSumsAs(const DistanceMomentsAccumulator& other) const {
-  return weight_ == other.weight_ && sum_ == other.sum_ && sumSquares_ == other.sumSquares_ &&
-         escaped_ == other.escaped_ && nearestCosine_ == other.nearestCosine_ &&
-         nearestDistance_ == other.nearestDistance_ && nearestEscaped_ == other.nearestEscaped_;
+  if (weight_ != other.weight_ || sum_ != other.sum_ || sumSquares_ != other.sumSquares_ || escaped_ != other.escaped_)
+    return false;
+  for (std::size_t t = 0; t < weight_.size(); ++t)
+    if (weight_[t] == 0.0 && (nearestCosine_[t] != other.nearestCosine_[t] ||
+                              nearestDistance_[t] != other.nearestDistance_[t] ||
+                              nearestEscaped_[t] != other.nearestEscaped_[t]))
+      return false;
+  return true;
 }
 
 void DistanceMomentsAccumulator::write(float* moments) const {

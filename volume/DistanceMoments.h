@@ -19,7 +19,9 @@ namespace baker {
 // Distances are capped at `cap` (2.5 spacings: beyond any point of the probe's eight cells, √3
 // spacings, moved by a relocation and the reader's normal bias); a ray that escapes counts as the
 // cap, so a texel of 1 and 1 is open: no surface within reach. Each ray ω adds to every texel c with the weight max(0, c·ω)^k,
-// k = ln 2 / −ln cos(√π / N): half weight half a texel's width away (k = 28.0 for N = 8).
+// k = ln 2 / −ln cos(√π / N) rounded to an integer: half weight half a texel's width away (k = 28
+// for N = 8). An integer power is a few multiplications; exp and log of every ray at every texel
+// it reaches took a quarter of a bake with a quality preset.
 struct DistanceMapLayout {
   static constexpr int kDefaultSize = 8;
   static constexpr double kCapSpacings = 2.5;
@@ -42,6 +44,28 @@ struct DistanceMapLayout {
 // Octahedral coordinates (u, v) in [0, 1]² of unit direction d, and back.
 Eigen::Vector2d octahedralEncode(const Eigen::Vector3d& d);
 Eigen::Vector3d octahedralDecode(const Eigen::Vector2d& uv);
+
+// The map's texels as lobes: ray ω adds to texel t with the weight max(0, c)^k, c = ω·(t's
+// direction), left out where it is below 1e-4. The ray-by-ray sums and the lattice weights both
+// take their cosines and weights from here, so that the two agree bit for bit.
+class TexelLobes {
+ public:
+  explicit TexelLobes(const DistanceMapLayout& layout);
+  int texels() const { return int(x_.size()); }
+  double cosine(int texel, const Eigen::Vector3d& d) const {
+    return x_[std::size_t(texel)] * d.x() + y_[std::size_t(texel)] * d.y() + z_[std::size_t(texel)] * d.z();
+  }
+  bool reaches(double cosine) const { return cosine > cutoff_; }
+  // c^k by squaring; only where reaches(c).
+  double weight(double cosine) const;
+  int power() const { return power_; }
+  double cutoff() const { return cutoff_; }
+
+ private:
+  int power_;
+  double cutoff_;  // the cosine at which the weight falls to 1e-4
+  std::vector<double> x_, y_, z_;
+};
 
 // Each texel's weights for one fixed set of directions, worked out once: a bake's fixed lattices
 // are a few rotations of one set, and working out 64 powers per ray for every probe took a
@@ -72,22 +96,24 @@ class DistanceMomentsAccumulator {
   // The same sums, bit for bit, for the set of directions `weights` was made for (std::logic_error
   // for weights of a map of another size).
   void add(const DistanceLatticeWeights& weights, const float* distances);
-  // Whether `other` holds the very same sums and nearest rays, bit for bit.
+  // Whether `other` holds the very same sums, bit for bit, and for each texel no lobe has reached
+  // the same nearest ray (what write() reads).
   bool holdsTheSameSumsAs(const DistanceMomentsAccumulator& other) const;
-  // max(0, c·ω)^k, 0 where it is negligible (what add weighs a ray with), and whether it is not.
-  static bool lobeWeight(double cosine, double sharpness, double cutoff, double* weight);
   // 2·texels values in units of the cap, then (with skyVisibility) texels escaped shares; a texel
   // whose lobe no ray reached holds the nearest ray's.
   void write(float* moments) const;
 
  private:
   DistanceMapLayout layout_;
-  std::vector<Eigen::Vector3d> texelDirections_;
-  double sharpness_, cutoff_;
+  TexelLobes lobes_;
   std::vector<double> weight_, sum_, sumSquares_, escaped_;
   // Per texel, the ray closest to it: what a texel no lobe reaches holds (with few rays, large N).
+  // Ray by ray, it is followed only while some texel has not been reached.
   std::vector<double> nearestCosine_, nearestDistance_, nearestEscaped_;
+  int unreached_ = 0;  // texels whose weight is still 0
   std::vector<double> rayDistance_, rayEscaped_;  // per ray of the lattice being added
+  std::vector<double> cosines_;                   // per texel, of the ray being added
+  std::vector<int> reached_;                      // the texels the ray's lobes reach
 };
 
 // The four texels a read at direction d blends, bilinearly between texel centres (clamped at the

@@ -1,0 +1,227 @@
+#!/usr/bin/env python3
+"""Time per probe to reach a relative irradiance error, the baker against scripting Blender Cycles.
+
+    scripts/cycles_time_to_error.py [--scene cornell_box] [--baker build/baker] [--threads 2]
+        [--rays 1024,4096,16384,65536] [--seeds 4] [--spp 16,64,256,1024] [--cycles-seeds 2]
+        [--res 128x64] [--target 0.01] [--volume-spacing 0.7] [--converged-rays 1048576] [--json OUT.json]
+
+Both renderers are measured against the same truth: the Cycles reference irradiance of
+../shared/data/reference/<scene>.json (its setting with --cycles-bounces, default 2: 2 x 1024
+samples per pixel, seed-to-seed noise under 0.3 %), at its probes, for the six axis normals.
+
+Error of one probe: the RMSE of its six axis irradiances (r + g + b) divided by their mean, the
+probe's "relative irradiance RMSE". For every ray count (baker) or sample count (Cycles), each seed
+draws its own samples (the baker's seed turns its lattices and its paths; Cycles' seed its pixel
+samples; the Cycles seeds are not the reference's), and a probe's error is the RMS over seeds. A
+setting reaches the target when every probe's error is at most --target. Where the two renderers
+disagree (their converged answers differ), that difference is part of the baker's error; the baker
+is also measured against its own converged answer (--converged-rays, another seed), which leaves
+its noise alone, as the Cycles renders are against the Cycles reference.
+
+Time per probe:
+  baker   `baker SCENE --rays R --spacing S --json`: the volume bake's trace-and-project seconds
+          divided by its probes: what a probe costs in a bake. The operators, worked out once per
+          bake whatever its size, and the load and write are left out (reported as
+          operators_seconds).
+  Cycles  reference_probe.py's per-probe wall seconds (Blender's start-up and the scene import
+          are left out), the panorama at --res and the given samples per pixel.
+Both use --threads threads. Between two settings on either side of the target, error and time are
+interpolated on log scales (error falls as a power of the work).
+
+Needs ../shared beside the checkout (scene, reference, tools) and `blender` on PATH with NumPy
+(Debian: blender python3-numpy). Scenes with an environment map are not handled (cornell_box and
+cornell_lights have none). Exit status: 0 measured, 2 could not measure.
+"""
+import argparse
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
+SHARED = os.path.join(ROOT, "..", "shared")
+AXES = ["+x", "-x", "+y", "-y", "+z", "-z"]
+
+
+def fail(message):
+    print("cycles_time_to_error.py: " + message, file=sys.stderr)
+    sys.exit(2)
+
+
+def run(command, capture=True):
+    result = subprocess.run(command, stdout=subprocess.PIPE if capture else subprocess.DEVNULL,
+                            stderr=subprocess.PIPE, text=True)
+    if result.returncode != 0:
+        fail("'%s' failed (%d): %s" % (" ".join(command[:3]), result.returncode, result.stderr.strip()[-2000:]))
+    return result.stdout
+
+
+def probe_error(measured, reference):
+    """Relative irradiance RMSE of one probe: six axis sums of r, g, b against the reference's."""
+    got = [sum(measured[a]) for a in AXES]
+    want = [sum(reference[a]) for a in AXES]
+    rmse = math.sqrt(sum((g - w) ** 2 for g, w in zip(got, want)) / len(AXES))
+    return rmse / (sum(want) / len(AXES))
+
+
+def lower_keys(axes):
+    return {k.lower(): v for k, v in axes.items()}
+
+
+def seed_rms(errors_by_seed):
+    """Per probe: the RMS over seeds of its error."""
+    probes = len(errors_by_seed[0])
+    return [math.sqrt(sum(e[p] ** 2 for e in errors_by_seed) / len(errors_by_seed)) for p in range(probes)]
+
+
+def baker_probes(args, scene, probes, bounces, rays, seed):
+    """The baker's axis irradiance at the probes, from its samples."""
+    command = [args.baker, "probe", scene, "--rays", str(rays), "--bounces", str(bounces), "--no", "direct-punctual",
+               "--seed", str(seed), "--threads", str(args.threads), "--json"]
+    for p in probes:
+        command.append("--at=%r,%r,%r" % tuple(p))
+    return [lower_keys(pr["irradiance_from_samples"]) for pr in json.loads(run(command))["probes"]]
+
+
+def baker_row(args, scene, probes, reference, converged, bounces, rays):
+    errors, noise = [], []
+    for seed in range(args.seeds):
+        measured = baker_probes(args, scene, probes, bounces, rays, seed)
+        errors.append([probe_error(m, ref) for m, ref in zip(measured, reference)])
+        noise.append([probe_error(m, ref) for m, ref in zip(measured, converged)])
+    with tempfile.TemporaryDirectory() as tmp:
+        bake = json.loads(run([args.baker, scene, "--rays", str(rays), "--bounces", str(bounces), "--no",
+                               "direct-punctual", "--spacing", str(args.volume_spacing), "--threads", str(args.threads),
+                               "--out", os.path.join(tmp, "volume.vdb"), "--json"]))
+    per_probe, own = seed_rms(errors), seed_rms(noise)
+    return {"rays": rays, "probe_relative_rmse": per_probe, "worst_probe_relative_rmse": max(per_probe),
+            "probe_relative_rmse_against_own_converged": own, "worst_probe_against_own_converged": max(own),
+            "seconds_per_probe": bake["seconds"]["trace_and_project"] / bake["probes"],
+            "operators_seconds": bake["seconds"]["operators"], "volume_probes": bake["probes"]}
+
+
+def cycles_row(args, scene, probes, reference, bounces, spp):
+    errors, seconds = [], []
+    for k in range(args.cycles_seeds):
+        with tempfile.TemporaryDirectory() as tmp:
+            command = ["blender", "-b", "--factory-startup", "--python-exit-code", "3", "--python",
+                       os.path.join(SHARED, "tools", "reference_probe.py"), "--", scene, "--res", args.res,
+                       "--spp", str(spp), "--bounces", str(bounces), "--seed", str(101 + k), "--threads",
+                       str(args.threads), "--out", tmp]
+            for p in probes:
+                command.append("--probe=%r,%r,%r" % tuple(p))
+            run(command, capture=False)
+            irradiance = os.path.join(tmp, "irradiance.json")
+            run(["blender", "-b", "--factory-startup", "--python-exit-code", "3", "--python",
+                 os.path.join(SHARED, "tools", "panorama_sh.py"), "--", tmp, "--json", irradiance], capture=False)
+            panoramas = sorted(json.load(open(irradiance)), key=lambda entry: entry["file"])
+            timing = json.load(open(os.path.join(tmp, "probes.json")))["probes"]
+        errors.append([probe_error(lower_keys(pan["irradiance_axes"]), ref) for pan, ref in zip(panoramas, reference)])
+        seconds += [entry["seconds"] for entry in timing]
+    per_probe = seed_rms(errors)
+    return {"spp": spp, "res": args.res, "probe_relative_rmse": per_probe, "worst_probe_relative_rmse": max(per_probe),
+            "seconds_per_probe": sum(seconds) / len(seconds)}
+
+
+def time_to_target(rows, target, work_key):
+    """Seconds per probe (and work) where the worst probe's error reaches the target, log-interpolated."""
+    for before, after in zip([None] + rows[:-1], rows):
+        if after["worst_probe_relative_rmse"] > target:
+            continue
+        if before is None:
+            return {work_key: after[work_key], "seconds_per_probe": after["seconds_per_probe"], "interpolated": False,
+                    "note": "the smallest setting already reaches the target: an upper bound"}
+        e0, e1 = math.log(before["worst_probe_relative_rmse"]), math.log(after["worst_probe_relative_rmse"])
+        f = (math.log(target) - e0) / (e1 - e0) if e1 != e0 else 1.0
+        lerp = lambda a, b: math.exp(math.log(a) + f * (math.log(b) - math.log(a)))
+        return {work_key: lerp(before[work_key], after[work_key]),
+                "seconds_per_probe": lerp(before["seconds_per_probe"], after["seconds_per_probe"]), "interpolated": True}
+    return None
+
+
+def numbers(text):
+    return [int(v) for v in text.split(",") if v]
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--scene", default="cornell_box")
+    ap.add_argument("--baker", default=os.path.join(ROOT, "build", "baker"))
+    ap.add_argument("--threads", type=int, default=2)
+    ap.add_argument("--rays", type=numbers, default=numbers("1024,4096,16384,65536"))
+    ap.add_argument("--seeds", type=int, default=4)
+    ap.add_argument("--spp", type=numbers, default=numbers("16,64,256,1024"))
+    ap.add_argument("--cycles-seeds", type=int, default=2)
+    ap.add_argument("--cycles-bounces", type=int, default=2)
+    ap.add_argument("--res", default="128x64")
+    ap.add_argument("--target", type=float, default=0.01)
+    ap.add_argument("--volume-spacing", type=float, default=0.7)
+    ap.add_argument("--converged-rays", type=int, default=1 << 20)
+    ap.add_argument("--json", help="write the results here as well")
+    args = ap.parse_args()
+
+    reference_path = os.path.join(SHARED, "data", "reference", args.scene + ".json")
+    scene = os.path.join(SHARED, "data", "scenes", args.scene, args.scene + ".gltf")
+    for path in (reference_path, scene, os.path.join(SHARED, "tools", "reference_probe.py")):
+        if not os.path.exists(path):
+            fail("missing %s: the scenes, references and tools live in ../shared beside the checkout" % path)
+    if shutil.which("blender") is None:
+        fail("blender not found (Debian: apt-get install blender python3-numpy)")
+    if not os.access(args.baker, os.X_OK):
+        fail("no baker at %s (build it, or pass --baker)" % args.baker)
+    reference = json.load(open(reference_path))
+    if reference.get("env"):
+        fail("%s uses an environment map, which this script does not pass on" % args.scene)
+    settings = [s for s in reference["settings"] if s["cycles_bounces"] == args.cycles_bounces]
+    if not settings:
+        fail("%s has no setting with %d Cycles bounces" % (reference_path, args.cycles_bounces))
+    setting = settings[0]
+    truth = [lower_keys(axes) for axes in setting["irradiance_axes"]]
+    probes = reference["probes"]
+    # Blender's Debian build imports NumPy from the system Python.
+    os.environ["PATH"] = "/usr/bin:" + os.environ.get("PATH", "")
+
+    # The baker's own converged answer (another seed), against which its error is noise alone.
+    converged = baker_probes(args, scene, probes, setting["baker_bounces"], args.converged_rays, 1000)
+    baker_rows = [baker_row(args, scene, probes, truth, converged, setting["baker_bounces"], r) for r in sorted(args.rays)]
+    cycles_rows = [cycles_row(args, scene, probes, truth, args.cycles_bounces, s) for s in sorted(args.spp)]
+    baker_at = time_to_target(baker_rows, args.target, "rays")
+    noise_rows = [dict(row, worst_probe_relative_rmse=row["worst_probe_against_own_converged"]) for row in baker_rows]
+    baker_noise_at = time_to_target(noise_rows, args.target, "rays")
+    cycles_at = time_to_target(cycles_rows, args.target, "spp")
+    result = {
+        "scene": args.scene, "probes": probes, "threads": args.threads, "target_relative_rmse": args.target,
+        "reference": {"file": os.path.relpath(reference_path, ROOT), "cycles_bounces": args.cycles_bounces,
+                      "spp_total": setting["spp_total"], "seed_to_seed_max_rel_diff": setting["seed_to_seed_max_rel_diff"]},
+        "baker": {"rows": baker_rows, "at_target": baker_at, "seeds": args.seeds, "converged_rays": args.converged_rays,
+                  "at_target_against_own_converged": baker_noise_at},
+        "cycles": {"rows": cycles_rows, "at_target": cycles_at, "seeds": args.cycles_seeds},
+        "speedup_at_target": (cycles_at["seconds_per_probe"] / baker_at["seconds_per_probe"]
+                              if baker_at and cycles_at else None),
+        "speedup_at_target_noise_alone": (cycles_at["seconds_per_probe"] / baker_noise_at["seconds_per_probe"]
+                                          if baker_noise_at and cycles_at else None),
+    }
+    print("%s, %d threads, worst probe's relative irradiance RMSE (RMS over seeds) against %s" %
+          (args.scene, args.threads, result["reference"]["file"]))
+    for name, rows, key in (("baker", baker_rows, "rays"), ("Cycles", cycles_rows, "spp")):
+        for row in rows:
+            own = row.get("worst_probe_against_own_converged")
+            print("  %-6s %-5s %7d  worst %.4f%s  %.3g s per probe" %
+                  (name, key, row[key], row["worst_probe_relative_rmse"],
+                   "" if own is None else " (%.4f against its own converged)" % own, row["seconds_per_probe"]))
+    for name, at in (("baker", baker_at), ("baker, noise alone", baker_noise_at), ("Cycles", cycles_at)):
+        print("  %s at %.1f %%: %s" % (name, 100 * args.target,
+                                        "not reached" if at is None else "%.3g s per probe" % at["seconds_per_probe"]))
+    for label, key in (("", "speedup_at_target"), (" (the baker's noise alone)", "speedup_at_target_noise_alone")):
+        if result[key] is not None:
+            print("  Cycles' time / the baker's%s: %.0f" % (label, result[key]))
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump(result, f, indent=1)
+
+
+if __name__ == "__main__":
+    main()
