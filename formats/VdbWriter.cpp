@@ -6,7 +6,6 @@
 #include <openvdb/io/io.h>
 #include <openvdb/openvdb.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -81,7 +80,7 @@ std::string failureReason() { return errno != 0 ? std::strerror(errno) : "the ou
 
 // OpenVDB's public writer takes every grid at once, so all of a volume's grids (228 for sh-l2
 // with distance maps) would be alive together, each with its own 32³ and 16³ internal nodes.
-// Writing a few grids at a time bounds that; Archive's protected members write the same header
+// Writing sixteen grids at a time bounds that; Archive's protected members write the same header
 // and grid records as File::write, given what holds for our grids: none is null, their names are
 // unique and not empty (so File::write would rename none), and none shares its tree with another
 // (so none would be written as an instance).
@@ -105,11 +104,12 @@ class GridByGridArchive : public openvdb::io::Archive {
     writeHeader(os, /*seekable=*/true);
     metadata.writeMeta(os);
     os.write(reinterpret_cast<const char*>(&gridCount), sizeof gridCount);
-    const std::int32_t batch = std::max(1, 2 * tbb::this_task_arena::max_concurrency());
     std::vector<GridRecord> records;
-    for (std::int32_t first = 0; first < gridCount; first += batch) {
-      records.assign(std::size_t(std::min(batch, gridCount - first)), GridRecord());
-      tbb::parallel_for(0, int(records.size()), [&](int k) { records[std::size_t(k)] = record(os, gridAt(first + k)); });
+    for (std::int32_t first = 0; first < gridCount; first += kGridsAtOnce) {
+      records.clear();
+      records.resize(std::size_t(std::min(kGridsAtOnce, gridCount - first)));
+      tbb::parallel_for(0, int(records.size()),
+                        [&](int k) { record(os, path, gridAt(first + k), &records[std::size_t(k)]); });
       for (GridRecord& r : records) {
         append(os, r);
         if (!os) throw std::runtime_error(fmt::format("{}: cannot write OpenVDB file: {}", path, failureReason()));
@@ -119,22 +119,23 @@ class GridByGridArchive : public openvdb::io::Archive {
   }
 
  private:
+  // Grids alive at once, whatever the cores: a bound on the memory the write adds to the volume's
+  // (each grid holds one value of every probe), and enough to keep 8 cores busy.
+  static constexpr std::int32_t kGridsAtOnce = 16;
+
   struct GridRecord {
-    std::string bytes;
+    std::stringstream bytes{std::ios::in | std::ios::out | std::ios::binary};
     openvdb::io::GridDescriptor descriptor;
   };
 
-  // Grid record as writeGrid puts it in a stream with the file's settings (copied from `file`:
-  // version, compression, statistics, stream metadata), starting at position 0.
-  GridRecord record(const std::ostream& file, const openvdb::GridBase::ConstPtr& grid) const {
-    std::stringstream side(std::ios::in | std::ios::out | std::ios::binary);
-    side.copyfmt(file);
-    GridRecord r;
-    r.descriptor = openvdb::io::GridDescriptor(grid->getName(), grid->type(), grid->saveFloatAsHalf());
-    writeGrid(r.descriptor, grid, side, /*seekable=*/true);
-    if (!side) throw std::runtime_error("cannot serialise an OpenVDB grid in memory");
-    r.bytes = std::move(side).str();
-    return r;
+  // The grid's record as writeGrid puts it in a stream with the file's settings (copied from
+  // `file`: version, compression, statistics, stream metadata), starting at position 0.
+  void record(const std::ostream& file, const std::string& path, const openvdb::GridBase::ConstPtr& grid,
+              GridRecord* r) const {
+    r->bytes.copyfmt(file);
+    r->descriptor = openvdb::io::GridDescriptor(grid->getName(), grid->type(), grid->saveFloatAsHalf());
+    writeGrid(r->descriptor, grid, r->bytes, /*seekable=*/true);
+    if (!r->bytes) throw std::runtime_error(fmt::format("{}: cannot serialise grid '{}' in memory", path, grid->getName()));
   }
 
   // The record at the stream's position, its three positions (written by
@@ -143,11 +144,13 @@ class GridByGridArchive : public openvdb::io::Archive {
     const std::int64_t base = std::int64_t(os.tellp());
     const std::int64_t positions[3] = {r.descriptor.getGridPos() + base, r.descriptor.getBlockPos() + base,
                                        r.descriptor.getEndPos() + base};
-    const std::size_t at = std::size_t(r.descriptor.getGridPos()) - sizeof positions;
-    if (r.descriptor.getGridPos() < std::int64_t(sizeof positions) || at + sizeof positions > r.bytes.size())
+    const std::int64_t at = r.descriptor.getGridPos() - std::int64_t(sizeof positions);
+    if (at < 0 || r.descriptor.getEndPos() != std::int64_t(r.bytes.tellp()))
       throw std::logic_error("an OpenVDB grid record without its stream positions");
-    std::memcpy(r.bytes.data() + at, positions, sizeof positions);
-    os.write(r.bytes.data(), std::streamsize(r.bytes.size()));
+    r.bytes.seekp(at);
+    r.bytes.write(reinterpret_cast<const char*>(positions), sizeof positions);
+    r.bytes.seekg(0);
+    os << r.bytes.rdbuf();
   }
 };
 

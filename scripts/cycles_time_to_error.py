@@ -2,7 +2,7 @@
 """Time per probe to reach a relative irradiance error, the baker against scripting Blender Cycles.
 
     scripts/cycles_time_to_error.py [--scene cornell_box] [--baker build/baker] [--threads 2]
-        [--rays 1024,4096,16384,65536] [--seeds 4] [--spp 16,64,256,1024] [--cycles-seeds 2]
+        [--rays 4096,8192,16384,32768,65536] [--seeds 4] [--spp 2,4,8,16,32] [--cycles-seeds 2]
         [--res 128x64] [--target 0.01] [--volume-spacing 0.7] [--converged-rays 1048576] [--json OUT.json]
 
 Both renderers are measured against the same truth: the Cycles reference irradiance of
@@ -142,6 +142,14 @@ def time_to_target(rows, target, work_key):
     return None
 
 
+def speedup(cycles_at, baker_at):
+    """Cycles' time over the baker's at the target; None unless both were bracketed by two settings
+    (a smallest setting that already reaches it gives only a bound: add smaller ones)."""
+    if not (cycles_at and baker_at and cycles_at["interpolated"] and baker_at["interpolated"]):
+        return None
+    return cycles_at["seconds_per_probe"] / baker_at["seconds_per_probe"]
+
+
 def numbers(text):
     return [int(v) for v in text.split(",") if v]
 
@@ -151,9 +159,9 @@ def main():
     ap.add_argument("--scene", default="cornell_box")
     ap.add_argument("--baker", default=os.path.join(ROOT, "build", "baker"))
     ap.add_argument("--threads", type=int, default=2)
-    ap.add_argument("--rays", type=numbers, default=numbers("1024,4096,16384,65536"))
+    ap.add_argument("--rays", type=numbers, default=numbers("4096,8192,16384,32768,65536"))
     ap.add_argument("--seeds", type=int, default=4)
-    ap.add_argument("--spp", type=numbers, default=numbers("16,64,256,1024"))
+    ap.add_argument("--spp", type=numbers, default=numbers("2,4,8,16,32"))
     ap.add_argument("--cycles-seeds", type=int, default=2)
     ap.add_argument("--cycles-bounces", type=int, default=2)
     ap.add_argument("--res", default="128x64")
@@ -165,9 +173,12 @@ def main():
 
     reference_path = os.path.join(SHARED, "data", "reference", args.scene + ".json")
     scene = os.path.join(SHARED, "data", "scenes", args.scene, args.scene + ".gltf")
-    for path in (reference_path, scene, os.path.join(SHARED, "tools", "reference_probe.py")):
+    for path in (reference_path, scene, os.path.join(SHARED, "tools", "reference_probe.py"),
+                 os.path.join(SHARED, "tools", "panorama_sh.py")):
         if not os.path.exists(path):
             fail("missing %s: the scenes, references and tools live in ../shared beside the checkout" % path)
+    # Blender's Debian build imports NumPy from the system Python.
+    os.environ["PATH"] = "/usr/bin:" + os.environ.get("PATH", "")
     if shutil.which("blender") is None:
         fail("blender not found (Debian: apt-get install blender python3-numpy)")
     if not os.access(args.baker, os.X_OK):
@@ -181,8 +192,6 @@ def main():
     setting = settings[0]
     truth = [lower_keys(axes) for axes in setting["irradiance_axes"]]
     probes = reference["probes"]
-    # Blender's Debian build imports NumPy from the system Python.
-    os.environ["PATH"] = "/usr/bin:" + os.environ.get("PATH", "")
 
     # The baker's own converged answer (another seed), against which its error is noise alone.
     converged = baker_probes(args, scene, probes, setting["baker_bounces"], args.converged_rays, 1000)
@@ -199,10 +208,8 @@ def main():
         "baker": {"rows": baker_rows, "at_target": baker_at, "seeds": args.seeds, "converged_rays": args.converged_rays,
                   "at_target_against_own_converged": baker_noise_at},
         "cycles": {"rows": cycles_rows, "at_target": cycles_at, "seeds": args.cycles_seeds},
-        "speedup_at_target": (cycles_at["seconds_per_probe"] / baker_at["seconds_per_probe"]
-                              if baker_at and cycles_at else None),
-        "speedup_at_target_noise_alone": (cycles_at["seconds_per_probe"] / baker_noise_at["seconds_per_probe"]
-                                          if baker_noise_at and cycles_at else None),
+        "speedup_at_target": speedup(cycles_at, baker_at),
+        "speedup_at_target_noise_alone": speedup(cycles_at, baker_noise_at),
     }
     print("%s, %d threads, worst probe's relative irradiance RMSE (RMS over seeds) against %s" %
           (args.scene, args.threads, result["reference"]["file"]))
@@ -213,11 +220,11 @@ def main():
                   (name, key, row[key], row["worst_probe_relative_rmse"],
                    "" if own is None else " (%.4f against its own converged)" % own, row["seconds_per_probe"]))
     for name, at in (("baker", baker_at), ("baker, noise alone", baker_noise_at), ("Cycles", cycles_at)):
-        print("  %s at %.1f %%: %s" % (name, 100 * args.target,
-                                        "not reached" if at is None else "%.3g s per probe" % at["seconds_per_probe"]))
+        print("  %s at %.1f %%: %s" % (name, 100 * args.target, "not reached" if at is None else "%.3g s per probe%s" % (
+            at["seconds_per_probe"], "" if at["interpolated"] else " or less (its smallest setting reaches it)")))
     for label, key in (("", "speedup_at_target"), (" (the baker's noise alone)", "speedup_at_target_noise_alone")):
-        if result[key] is not None:
-            print("  Cycles' time / the baker's%s: %.0f" % (label, result[key]))
+        print("  Cycles' time / the baker's%s: %s" % (label, "not bracketed by the settings" if result[key] is None
+                                                        else "%.0f" % result[key]))
     if args.json:
         with open(args.json, "w") as f:
             json.dump(result, f, indent=1)

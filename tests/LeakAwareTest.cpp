@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 #include <random>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "common/Error.h"
@@ -58,10 +59,8 @@ TEST(DistanceMoments, TexelLobesAreTheIntegerPowerAboveTheirCutoff) {
     EXPECT_EQ(lobes.power(), int(layout.sharpness()));
     EXPECT_NEAR(std::pow(lobes.cutoff(), lobes.power()), 1e-4, 1e-12) << size;
     for (double c : {1.0, 0.999, 0.95, 0.9, 0.8, 0.75}) {
-      if (!lobes.reaches(c)) {
-        EXPECT_LE(c, lobes.cutoff()) << size << " " << c;
-        continue;
-      }
+      EXPECT_EQ(lobes.reaches(c), c > lobes.cutoff()) << size << " " << c;
+      if (!lobes.reaches(c)) continue;
       EXPECT_NEAR(lobes.weight(c), std::pow(c, lobes.power()), 1e-13 * std::pow(c, lobes.power())) << size << " " << c;
     }
     EXPECT_FALSE(lobes.reaches(lobes.cutoff()));
@@ -123,8 +122,23 @@ TEST(DistanceMoments, LatticeWeightsWorkedOutOnceGiveTheSameSums) {
       }
       rayByRay.add(directions.data(), distances.data(), rays);
       once.add(weights, distances.data());
-      EXPECT_TRUE(once.holdsTheSameSumsAs(rayByRay)) << size << " texels a side, " << rays << " rays"
-                                                     << (withEarlier ? ", after earlier rays" : "");
+      const std::string what = std::to_string(size) + " texels a side, " + std::to_string(rays) + " rays" +
+                               (withEarlier ? ", after earlier rays" : "");
+      EXPECT_TRUE(once.holdsTheSameSumsAs(rayByRay)) << what;
+      // Rays weighed one by one after the lattice's (the texels still unreached keep following
+      // their nearest ray), and the same again after a reset.
+      rayByRay.add(earlier.data(), earlierDistances.data(), int(earlier.size()));
+      once.add(earlier.data(), earlierDistances.data(), int(earlier.size()));
+      EXPECT_TRUE(once.holdsTheSameSumsAs(rayByRay)) << what << ", then earlier rays";
+      std::vector<float> fromRays(std::size_t(layout.valuesPerProbe())), fromWeights(fromRays.size());
+      rayByRay.write(fromRays.data());
+      once.write(fromWeights.data());
+      EXPECT_EQ(fromRays, fromWeights) << what;
+      rayByRay.reset();
+      once.reset();
+      rayByRay.add(directions.data(), distances.data(), rays);
+      once.add(weights, distances.data());
+      EXPECT_TRUE(once.holdsTheSameSumsAs(rayByRay)) << what << ", after a reset";
     }
   }
   DistanceMomentsAccumulator other(DistanceMapLayout::baked(4, 1.0));

@@ -16,7 +16,10 @@ constexpr double kNegligibleWeight = 1e-4;
 }  // namespace
 
 double DistanceMapLayout::sharpness() const {
-  return std::max(1.0, std::round(std::log(2.0) / -std::log(std::cos(std::sqrt(M_PI) / size))));
+  // A texel's half width past 90° (N = 1) leaves no power that halves there: the broadest lobe.
+  const double halfWidthCosine = std::cos(std::sqrt(M_PI) / size);
+  if (!(halfWidthCosine > 0.0)) return 1.0;
+  return std::max(1.0, std::round(std::log(2.0) / -std::log(halfWidthCosine)));
 }
 
 Eigen::Vector3d DistanceMapLayout::texelDirection(int texel) const {
