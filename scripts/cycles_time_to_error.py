@@ -44,6 +44,9 @@ import tempfile
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
 SHARED = os.path.join(ROOT, "..", "shared")
 AXES = ["+x", "-x", "+y", "-y", "+z", "-z"]
+REFERENCE_PROBE = os.path.join(SHARED, "tools", "reference_probe.py")
+PANORAMA_SH = os.path.join(SHARED, "tools", "panorama_sh.py")
+BLENDER = ["blender", "-b", "--factory-startup", "--python-exit-code", "3", "--python"]
 
 
 def fail(message):
@@ -107,16 +110,13 @@ def cycles_row(args, scene, probes, reference, bounces, spp):
     errors, seconds = [], []
     for k in range(args.cycles_seeds):
         with tempfile.TemporaryDirectory() as tmp:
-            command = ["blender", "-b", "--factory-startup", "--python-exit-code", "3", "--python",
-                       os.path.join(SHARED, "tools", "reference_probe.py"), "--", scene, "--res", args.res,
-                       "--spp", str(spp), "--bounces", str(bounces), "--seed", str(101 + k), "--threads",
-                       str(args.threads), "--out", tmp]
+            command = BLENDER + [REFERENCE_PROBE, "--", scene, "--res", args.res, "--spp", str(spp), "--bounces",
+                                 str(bounces), "--seed", str(101 + k), "--threads", str(args.threads), "--out", tmp]
             for p in probes:
                 command.append("--probe=%r,%r,%r" % tuple(p))
             run(command, capture=False)
             irradiance = os.path.join(tmp, "irradiance.json")
-            run(["blender", "-b", "--factory-startup", "--python-exit-code", "3", "--python",
-                 os.path.join(SHARED, "tools", "panorama_sh.py"), "--", tmp, "--json", irradiance], capture=False)
+            run(BLENDER + [PANORAMA_SH, "--", tmp, "--json", irradiance], capture=False)
             panoramas = sorted(json.load(open(irradiance)), key=lambda entry: entry["file"])
             timing = json.load(open(os.path.join(tmp, "probes.json")))["probes"]
         errors.append([probe_error(lower_keys(pan["irradiance_axes"]), ref) for pan, ref in zip(panoramas, reference)])
@@ -173,8 +173,7 @@ def main():
 
     reference_path = os.path.join(SHARED, "data", "reference", args.scene + ".json")
     scene = os.path.join(SHARED, "data", "scenes", args.scene, args.scene + ".gltf")
-    for path in (reference_path, scene, os.path.join(SHARED, "tools", "reference_probe.py"),
-                 os.path.join(SHARED, "tools", "panorama_sh.py")):
+    for path in (reference_path, scene, REFERENCE_PROBE, PANORAMA_SH):
         if not os.path.exists(path):
             fail("missing %s: the scenes, references and tools live in ../shared beside the checkout" % path)
     # Blender's Debian build imports NumPy from the system Python.
