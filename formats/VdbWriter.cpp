@@ -30,31 +30,44 @@
 namespace baker {
 namespace {
 
+// A stored brick (exactly one OpenVDB leaf) and, for each probe of it the level holds, the
+// probe's voxel in the leaf and its row in the volume's arrays. Worked out once per level rather
+// than once per grid: a volume with distance maps has over two hundred grids.
+struct StoredBrick {
+  openvdb::Coord origin;
+  std::vector<std::pair<openvdb::Index, std::int64_t>> voxelRows;
+};
+
+std::vector<StoredBrick> storedBrickVoxels(const Volume& v, const std::vector<bool>& stored) {
+  static_assert(openvdb::FloatTree::LeafNodeType::DIM == kBrickSize, "a brick is one OpenVDB leaf");
+  std::vector<StoredBrick> bricks;
+  const ProbeGrid& g = v.grid;
+  for (std::int64_t b = 0; b < g.brickCount(); ++b) {
+    if (!stored[std::size_t(b)]) continue;
+    const Eigen::Vector3i corner = g.brickCorner(b);
+    StoredBrick& brick = bricks.emplace_back();
+    brick.origin = openvdb::Coord(corner.x(), corner.y(), corner.z());
+    // A sub-brick the level does not hold stays inactive at the background value, so that
+    // OpenVDB's mask compression stores none of its voxels.
+    forEachHeldProbeOfBrick(g, v.rows, b, [&](int i, int j, int k, std::int64_t row) {
+      brick.voxelRows.emplace_back(openvdb::FloatTree::LeafNodeType::coordToOffset(openvdb::Coord(i, j, k)), row);
+    });
+  }
+  return bricks;
+}
+
 // A grid holding the voxels of the stored bricks, every held one active (a constant value is data
-// here, not background). A brick is exactly one leaf node, filled in place: going voxel by
+// here, not background); `valueAt(row)`. A brick is filled in place as one leaf: going voxel by
 // voxel through an accessor costs several times as much.
 template <typename GridType, typename ValueAt>
-typename GridType::Ptr sparseGrid(const Volume& v, const std::vector<bool>& stored, ValueAt valueAt) {
+typename GridType::Ptr sparseGrid(const std::vector<StoredBrick>& bricks, ValueAt valueAt) {
   using LeafType = typename GridType::TreeType::LeafNodeType;
-  static_assert(LeafType::DIM == kBrickSize, "a brick is one OpenVDB leaf");
   auto grid = GridType::create(typename GridType::ValueType(0));
-  const ProbeGrid& g = v.grid;
-  const Eigen::Vector3i bricks = g.brickCounts();
-  for (int bk = 0; bk < bricks.z(); ++bk)
-    for (int bj = 0; bj < bricks.y(); ++bj)
-      for (int bi = 0; bi < bricks.x(); ++bi) {
-        const openvdb::Coord origin(bi * kBrickSize, bj * kBrickSize, bk * kBrickSize);
-        if (!stored[g.brickOf(origin.x(), origin.y(), origin.z())]) continue;
-        auto leaf = std::make_unique<LeafType>(origin, typename GridType::ValueType(0), false);
-        for (int k = origin.z(); k < std::min(origin.z() + kBrickSize, g.dims.z()); ++k)
-          for (int j = origin.y(); j < std::min(origin.y() + kBrickSize, g.dims.y()); ++j)
-            for (int i = origin.x(); i < std::min(origin.x() + kBrickSize, g.dims.x()); ++i)
-              // A sub-brick the level does not hold stays inactive at the background value, so
-              // that OpenVDB's mask compression stores none of its voxels.
-              if (v.rows.row(g, i, j, k) >= 0)
-                leaf->setValueOn(LeafType::coordToOffset(openvdb::Coord(i, j, k)), valueAt(g.linearIndex(i, j, k)));
-        grid->tree().addLeaf(leaf.release());
-      }
+  for (const StoredBrick& brick : bricks) {
+    auto leaf = std::make_unique<LeafType>(brick.origin, typename GridType::ValueType(0), false);
+    for (const auto& [voxel, row] : brick.voxelRows) leaf->setValueOn(voxel, valueAt(row));
+    grid->tree().addLeaf(leaf.release());
+  }
   return grid;
 }
 
@@ -161,6 +174,23 @@ struct LevelGrids {
   std::vector<bool> stored;
 };
 
+// A level's grid `spec`: its stored bricks' voxels.
+openvdb::GridBase::Ptr levelGrid(const Volume& volume, const std::vector<StoredBrick>& bricks, const VolumeGrid& spec) {
+  if (spec.kind == VolumeGrid::Kind::ProbeState)
+    return sparseGrid<openvdb::Int32Grid>(bricks, [&](std::int64_t row) { return int(volume.states[std::size_t(row)]); });
+  if (spec.kind == VolumeGrid::Kind::ProbeOffset)
+    return sparseGrid<openvdb::Vec3SGrid>(bricks, [&](std::int64_t row) {
+      const Eigen::Vector3f& offset = volume.offsets[std::size_t(row)];
+      return openvdb::Vec3s(offset.x(), offset.y(), offset.z());
+    });
+  if (spec.components == 3) {
+    const FloatColumn r = floatColumn(volume, spec, 0), g = floatColumn(volume, spec, 1), b = floatColumn(volume, spec, 2);
+    return sparseGrid<openvdb::Vec3SGrid>(bricks, [&](std::int64_t row) { return openvdb::Vec3s(r[row], g[row], b[row]); });
+  }
+  const FloatColumn column = floatColumn(volume, spec, 0);
+  return sparseGrid<openvdb::FloatGrid>(bricks, [&](std::int64_t row) { return column[row]; });
+}
+
 void writeLevels(const std::vector<LevelGrids>& levels, const Basis& basis, const openvdb::MetaMap& metadata,
                  bool hasProbeStates, const std::string& path) {
   for (const LevelGrids& level : levels) requireFiniteVolume(*level.volume);
@@ -168,20 +198,14 @@ void writeLevels(const std::vector<LevelGrids>& levels, const Basis& basis, cons
   const Volume& first = *levels.front().volume;
   const std::vector<VolumeGrid> specs = volumeGrids(basis, first.visibilityPerProbe, hasProbeStates, first.distanceMap,
                                                     first.keepsSkyDirect, first.keepsSkyBounced);
+  std::vector<std::vector<StoredBrick>> bricks;
+  for (const LevelGrids& level : levels) bricks.push_back(storedBrickVoxels(*level.volume, level.stored));
   const auto gridAt = [&](std::int32_t index) {
-    const LevelGrids& level = levels[std::size_t(index) / specs.size()];
-    const Volume& volume = *level.volume;
+    const std::size_t n = std::size_t(index) / specs.size();
+    const Volume& volume = *levels[n].volume;
     const VolumeGrid& spec = specs[std::size_t(index) % specs.size()];
-    openvdb::GridBase::Ptr grid;
-    if (spec.kind == VolumeGrid::Kind::ProbeState)
-      grid = sparseGrid<openvdb::Int32Grid>(volume, level.stored, [&](std::int64_t p) { return int(gridValue(volume, spec, 0, p)); });
-    else if (spec.components == 3)
-      grid = sparseGrid<openvdb::Vec3SGrid>(volume, level.stored, [&](std::int64_t p) {
-        return openvdb::Vec3s(gridValue(volume, spec, 0, p), gridValue(volume, spec, 1, p), gridValue(volume, spec, 2, p));
-      });
-    else
-      grid = sparseGrid<openvdb::FloatGrid>(volume, level.stored, [&](std::int64_t p) { return gridValue(volume, spec, 0, p); });
-    grid->setName(level.prefix + spec.name);
+    openvdb::GridBase::Ptr grid = levelGrid(volume, bricks[n], spec);
+    grid->setName(levels[n].prefix + spec.name);
     openvdb::math::Transform::Ptr transform = openvdb::math::Transform::createLinearTransform(volume.grid.spacing);
     transform->postTranslate(vec3d(volume.grid.origin));
     grid->setTransform(transform);

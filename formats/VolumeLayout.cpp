@@ -65,18 +65,28 @@ std::string componentName(const VolumeGrid& grid, int component) {
 float gridValue(const Volume& v, const VolumeGrid& grid, int component, std::int64_t probe) {
   const std::int64_t row = v.rowOf(probe);
   if (row < 0) return grid.kind == VolumeGrid::Kind::ProbeState ? float(ProbeState::Invalid) : 0.0f;
+  return rowValue(v, grid, component, row);
+}
+
+float rowValue(const Volume& v, const VolumeGrid& grid, int component, std::int64_t row) {
+  if (grid.kind == VolumeGrid::Kind::ProbeState) return float(v.states[std::size_t(row)]);
+  if (grid.kind == VolumeGrid::Kind::ProbeOffset) return v.offsets[std::size_t(row)][component];
+  return floatColumn(v, grid, component)[row];
+}
+
+FloatColumn floatColumn(const Volume& v, const VolumeGrid& grid, int component) {
+  const int at = grid.index[component];
   switch (grid.kind) {
-    case VolumeGrid::Kind::Coefficients: return v.coefficients[row * v.coefficientsPerProbe + grid.index[component]];
-    case VolumeGrid::Kind::SkyDirect: return v.skyDirect[row * v.coefficientsPerProbe + grid.index[component]];
-    case VolumeGrid::Kind::SkyBounced: return v.skyBounced[row * v.coefficientsPerProbe + grid.index[component]];
-    case VolumeGrid::Kind::Visibility: return v.visibility[row * v.visibilityPerProbe + grid.index[component]];
+    case VolumeGrid::Kind::Coefficients: return {v.coefficients.data() + at, v.coefficientsPerProbe};
+    case VolumeGrid::Kind::SkyDirect: return {v.skyDirect.data() + at, v.coefficientsPerProbe};
+    case VolumeGrid::Kind::SkyBounced: return {v.skyBounced.data() + at, v.coefficientsPerProbe};
+    case VolumeGrid::Kind::Visibility: return {v.visibility.data() + at, v.visibilityPerProbe};
     case VolumeGrid::Kind::DistanceMoments:
-    case VolumeGrid::Kind::SkyVisibilityMap:
-      return v.distanceMoments[row * v.distanceMomentsPerProbe() + grid.index[component]];
-    case VolumeGrid::Kind::ProbeState: return float(v.states[row]);
-    case VolumeGrid::Kind::ProbeOffset: return v.offsets[row][component];
+    case VolumeGrid::Kind::SkyVisibilityMap: return {v.distanceMoments.data() + at, v.distanceMomentsPerProbe()};
+    case VolumeGrid::Kind::ProbeState:
+    case VolumeGrid::Kind::ProbeOffset: break;
   }
-  return 0.0f;
+  throw std::logic_error(fmt::format("grid '{}' is not held as floats row by row", grid.name));
 }
 
 bool setGridValue(Volume& v, const VolumeGrid& grid, int component, std::int64_t probe, float value) {

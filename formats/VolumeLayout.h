@@ -52,6 +52,19 @@ std::string componentName(const VolumeGrid& grid, int component);
 
 // Zero (an Invalid state) for a probe the volume does not hold.
 float gridValue(const Volume& volume, const VolumeGrid& grid, int component, std::int64_t probe);
+// The value in row `row` (Volume::rowOf) of a probe the volume holds.
+float rowValue(const Volume& volume, const VolumeGrid& grid, int component, std::int64_t row);
+
+// Where a component of a grid held as floats (not ProbeState or ProbeOffset) sits in a volume's
+// arrays: row r's value is at values[r * stride]. What a writer reads probe after probe, rather
+// than going through the kind of grid at each value.
+struct FloatColumn {
+  const float* values = nullptr;
+  std::int64_t stride = 0;
+  float operator[](std::int64_t row) const { return values[row * stride]; }
+};
+// std::logic_error for ProbeState and ProbeOffset.
+FloatColumn floatColumn(const Volume& volume, const VolumeGrid& grid, int component);
 // Sizes `volume`'s arrays are expected to have already (see prepareForReading). False, storing
 // nothing, for a probe the volume does not hold (a part read as its own bricks only).
 [[nodiscard]] bool setGridValue(Volume& volume, const VolumeGrid& grid, int component, std::int64_t probe, float value);
