@@ -73,8 +73,9 @@ std::uint64_t hashWithPlaceholder(std::ifstream& in, std::uint64_t digits) {
   while (in) {
     in.read(buffer.data(), std::streamsize(buffer.size()));
     const std::size_t count = std::size_t(in.gcount());
-    for (std::size_t i = 0; i < count; ++i)
-      if (position + i >= digits && position + i < digits + kDigits) buffer[i] = '0';
+    // The placeholder's bytes in this piece, if any: [from, to).
+    const std::uint64_t from = std::max(digits, position), to = std::min(digits + kDigits, position + count);
+    if (from < to) std::fill(buffer.begin() + std::ptrdiff_t(from - position), buffer.begin() + std::ptrdiff_t(to - position), '0');
     hash.add(buffer.data(), count);
     position += count;
   }

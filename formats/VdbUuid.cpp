@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <fstream>
 #include <stdexcept>
@@ -43,9 +44,11 @@ void deriveVdbUuid(const std::string& path) {
   while (in) {
     in.read(buffer.data(), std::streamsize(buffer.size()));
     const std::size_t count = std::size_t(in.gcount());
+    // The UUID's bytes in this piece, if any, read as '0': [from, to).
+    const std::uint64_t from = std::max(kUuidOffset, position), to = std::min(kUuidOffset + kUuidLength, position + count);
+    if (from < to) std::fill(buffer.begin() + std::ptrdiff_t(from - position), buffer.begin() + std::ptrdiff_t(to - position), '0');
     for (std::size_t i = 0; i < count; ++i) {
-      const bool inUuid = position + i >= kUuidOffset && position + i < kUuidOffset + kUuidLength;
-      const unsigned char byte = inUuid ? '0' : static_cast<unsigned char>(buffer[i]);
+      const unsigned char byte = static_cast<unsigned char>(buffer[i]);
       first = (first ^ byte) * kPrime;
       second = (second ^ byte) * kPrime;
     }
