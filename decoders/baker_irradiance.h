@@ -705,7 +705,8 @@ inline void blendProbes(const float* const probes[8], const double weight[8], in
 // ---------------------------------------------------------------------------------------------
 // Leak-aware weights (docs/LEAKS.md): a volume with "baker.distance_map" holds per probe an N × N
 // octahedral map of the mean and mean squared distance to the first surface, in units of the
-// map's cap (grids distance_moments_NNN: value 2t and 2t + 1 of texel t = i + N·j). Multiply each
+// map's cap (value 2t and 2t + 1: R and G of grid distance_map_NNN, texel t = NNN = i + N·j; in
+// files of format 3, grids distance_moments_NNN). Multiply each
 // corner's trilinear weight by leakWeight() and divide by the sum of the products.
 
 struct DistanceMap {

@@ -62,7 +62,7 @@ nlohmann::json manifestOf(const Volume& v, const Basis& basis, ExrPrecision prec
   for (int k = 0; k < layout.texels().z(); ++k) slices.push_back(sliceName(k));
   const ProbeGrid& g = v.grid;
   return {{"format", kFormatName},
-          {"format_version", kVolumeFormatVersion},
+          {"format_version", formatVersionOf(v)},
           {"basis", basis.name()},
           {"dims", {g.dims.x(), g.dims.y(), g.dims.z()}},
           {"origin", {g.origin.x(), g.origin.y(), g.origin.z()}},
@@ -330,9 +330,9 @@ Volume readSliceSet(const std::filesystem::path& dir, const nlohmann::json& m, c
   Volume volume = manifest.header.emptyVolume(manifestPath, parts);
 
   const std::unique_ptr<Basis> basis = makeBasis(volume.basisName);
-  const std::vector<VolumeGrid> grids = volumeGrids(*basis, volume.visibilityPerProbe, manifest.header.hasProbeStates,
-                                                    volume.distanceMap, volume.keepsSkyDirect,
-                                                    volume.keepsSkyBounced);
+  const std::vector<VolumeGrid> grids =
+      volumeGrids(*basis, volume.visibilityPerProbe, manifest.header.hasProbeStates, volume.distanceMap,
+                  distanceGridsInFile(manifest.header.text), volume.keepsSkyDirect, volume.keepsSkyBounced);
   std::vector<float> pixels;
   for (int k = 0; k < depth; ++k) readSlice(dir, manifest, k, manifestPath, grids, pixels, volume);
   requireFiniteValues(volume, path);

@@ -63,12 +63,13 @@ void readVoxels(openvdb::io::File& file, const std::string& name, const ProbeGri
 }
 
 // The grids of one level (named `prefix` + the layout's name) into `volume`, sized already.
-void readLevelGrids(openvdb::io::File& file, const std::string& path, const std::string& prefix, bool hasProbeStates,
-                    Volume& volume) {
+void readLevelGrids(openvdb::io::File& file, const std::string& path, const std::string& prefix,
+                    const VolumeHeader& header, Volume& volume) {
   const std::unique_ptr<Basis> basis = makeBasis(volume.basisName);
   const ProbeGrid& g = volume.grid;
-  for (const VolumeGrid& spec : volumeGrids(*basis, volume.visibilityPerProbe, hasProbeStates, volume.distanceMap,
-                                                   volume.keepsSkyDirect, volume.keepsSkyBounced)) {
+  for (const VolumeGrid& spec : volumeGrids(*basis, volume.visibilityPerProbe, header.hasProbeStates,
+                                            volume.distanceMap, distanceGridsInFile(header.text),
+                                            volume.keepsSkyDirect, volume.keepsSkyBounced)) {
     const std::string name = prefix + spec.name;
     if (spec.kind == VolumeGrid::Kind::ProbeState)
       readVoxels<openvdb::Int32Grid>(file, name, g, path, [&](std::int64_t p, int state) {
@@ -171,7 +172,7 @@ Volume readUniform(openvdb::io::File& file, const openvdb::MetaMap& meta, const 
                                  path, kPlacementKey));
   const VolumeHeader header = vdbHeader(file, meta, path);
   Volume volume = header.emptyVolume(path, parts);
-  readLevelGrids(file, path, "", header.hasProbeStates, volume);
+  readLevelGrids(file, path, "", header, volume);
   requireFiniteValues(volume, path);
   return volume;
 }
@@ -212,7 +213,7 @@ AdaptiveVolume readLevelsOf(openvdb::io::File& file, const openvdb::MetaMap& met
       volume.levels.back().settings.clear();
       volume.levels.back().sky.reset();
     }
-    readLevelGrids(file, path, levelGridPrefix(level), true, volume.levels.back());
+    readLevelGrids(file, path, levelGridPrefix(level), header, volume.levels.back());
     requireFiniteValues(volume.levels.back(), path);
   }
   if (volume.coarsest().shard) volume.placement = placementOf(meta, levels, path);

@@ -196,8 +196,9 @@ void writeLevels(const std::vector<LevelGrids>& levels, const Basis& basis, cons
   for (const LevelGrids& level : levels) requireFiniteVolume(*level.volume);
   openvdb::initialize();
   const Volume& first = *levels.front().volume;
-  const std::vector<VolumeGrid> specs = volumeGrids(basis, first.visibilityPerProbe, hasProbeStates, first.distanceMap,
-                                                    first.keepsSkyDirect, first.keepsSkyBounced);
+  const std::vector<VolumeGrid> specs =
+      volumeGrids(basis, first.visibilityPerProbe, hasProbeStates, first.distanceMap,
+                  distanceGridsWritten(first.distanceMap), first.keepsSkyDirect, first.keepsSkyBounced);
   std::vector<std::vector<StoredBrick>> bricks;
   for (const LevelGrids& level : levels) bricks.push_back(storedBrickVoxels(*level.volume, level.stored));
   const auto gridAt = [&](std::int32_t index) {

@@ -27,12 +27,12 @@ void requireKnownFormatVersion(const std::vector<std::pair<std::string, std::str
   const auto [end, error] = std::from_chars(entry->second.data(), entry->second.data() + entry->second.size(), version);
   if (error != std::errc() || end != entry->second.data() + entry->second.size())
     throw InputError(fmt::format("{}: baker.format_version \"{}\" is not a whole number", path, entry->second));
-  if (version > kLevelsFormatVersion)
+  if (version > kNewestFormatVersion)
     throw InputError(fmt::format("{}: baker.format_version is {}: written by a newer baker (this one reads formats {} to "
-                                 "{})", path, version, kOldestFormatRead, kLevelsFormatVersion));
+                                 "{})", path, version, kOldestFormatRead, kNewestFormatVersion));
   if (version < kOldestFormatRead)
     throw InputError(fmt::format("{}: baker.format_version is {}: too old to read (formats {} to {}); bake it again",
-                                 path, version, kOldestFormatRead, kLevelsFormatVersion));
+                                 path, version, kOldestFormatRead, kNewestFormatVersion));
 }
 
 }  // namespace
@@ -116,14 +116,16 @@ void requireFiniteValues(const Volume& v, const std::string& path) {
       throw InputError(fmt::format("{}: probe {} has a non-finite visibility value", path,
                                    v.rows.probeAt(v.grid, std::int64_t(i / v.visibilityPerProbe))));
   const std::size_t perProbe = std::size_t(std::max(1, v.distanceMomentsPerProbe()));
-  const std::size_t moments = 2 * std::size_t(v.distanceMap.texels());
+  const std::size_t texels = std::size_t(v.distanceMap.texels());
   for (std::size_t i = 0; i < v.distanceMoments.size(); ++i)
     if (!(v.distanceMoments[i] >= 0.0f && v.distanceMoments[i] <= 1.0f)) {
+      // Named by what it is, whichever grids the file holds it in.
       const std::size_t value = i % perProbe;
-      const std::string grid = value < moments ? fmt::format("distance_moments_{:03}", value)
-                                               : fmt::format("sky_visibility_map_{:03}", value - moments);
+      const std::string what = value < 2 * texels ? fmt::format("texel {}'s mean{} distance", value / 2,
+                                                                value % 2 ? " squared" : "")
+                                                  : fmt::format("texel {}'s sky share", value - 2 * texels);
       throw InputError(fmt::format("{}: probe {} has a distance-map value ({}) of {}, outside [0, 1]", path,
-                                   v.rows.probeAt(v.grid, std::int64_t(i / perProbe)), grid, v.distanceMoments[i]));
+                                   v.rows.probeAt(v.grid, std::int64_t(i / perProbe)), what, v.distanceMoments[i]));
     }
   for (const Eigen::Vector3f& o : v.offsets)
     if (!o.allFinite()) throw InputError(fmt::format("{}: a probe offset is not finite", path));

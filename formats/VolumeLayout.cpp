@@ -29,20 +29,30 @@ void addCoefficientGrids(const Basis& basis, VolumeGrid::Kind kind, const std::s
 
 }  // namespace
 
+DistanceGrids distanceGridsWritten(const DistanceMapLayout& layout) {
+  return layout.skyVisibility ? DistanceGrids::RgbPerTexel : DistanceGrids::ScalarPerValue;
+}
+
 std::vector<VolumeGrid> volumeGrids(const Basis& basis, int visibilityPerProbe, bool hasProbeStates,
-                                    const DistanceMapLayout& distanceMap, bool skyDirect, bool skyBounced) {
+                                    const DistanceMapLayout& distanceMap, DistanceGrids distanceGrids, bool skyDirect,
+                                    bool skyBounced) {
   std::vector<VolumeGrid> grids;
   addCoefficientGrids(basis, VolumeGrid::Kind::Coefficients, "", grids);
   if (skyDirect) addCoefficientGrids(basis, VolumeGrid::Kind::SkyDirect, "sky_direct_", grids);
   if (skyBounced) addCoefficientGrids(basis, VolumeGrid::Kind::SkyBounced, "sky_bounced_", grids);
   for (int f = 0; f < visibilityPerProbe; ++f)
     grids.push_back({fmt::format("visibility_{:02}", f), VolumeGrid::Kind::Visibility, 1, {f, 0, 0}});
-  const int moments = distanceMap.size > 0 ? 2 * distanceMap.texels() : 0;
-  for (int f = 0; f < moments; ++f)
-    grids.push_back({fmt::format("distance_moments_{:03}", f), VolumeGrid::Kind::DistanceMoments, 1, {f, 0, 0}});
-  if (distanceMap.size > 0 && distanceMap.skyVisibility)
-    for (int t = 0; t < distanceMap.texels(); ++t)
-      grids.push_back({fmt::format("sky_visibility_map_{:03}", t), VolumeGrid::Kind::SkyVisibilityMap, 1, {moments + t, 0, 0}});
+  const int texels = distanceMap.size > 0 ? distanceMap.texels() : 0, moments = 2 * texels;
+  if (texels > 0 && distanceMap.skyVisibility && distanceGrids == DistanceGrids::RgbPerTexel) {
+    for (int t = 0; t < texels; ++t)
+      grids.push_back({fmt::format("distance_map_{:03}", t), VolumeGrid::Kind::DistanceMap, 3, {2 * t, 2 * t + 1, moments + t}});
+  } else {
+    for (int f = 0; f < moments; ++f)
+      grids.push_back({fmt::format("distance_moments_{:03}", f), VolumeGrid::Kind::DistanceMoments, 1, {f, 0, 0}});
+    if (texels > 0 && distanceMap.skyVisibility)
+      for (int t = 0; t < texels; ++t)
+        grids.push_back({fmt::format("sky_visibility_map_{:03}", t), VolumeGrid::Kind::SkyVisibilityMap, 1, {moments + t, 0, 0}});
+  }
   if (hasProbeStates) {
     grids.push_back({"probe_state", VolumeGrid::Kind::ProbeState, 1, {0, 0, 0}});
     grids.push_back({"probe_offset", VolumeGrid::Kind::ProbeOffset, 3, {0, 1, 2}});
@@ -52,6 +62,7 @@ std::vector<VolumeGrid> volumeGrids(const Basis& basis, int visibilityPerProbe, 
 
 std::vector<VolumeGrid> volumeGrids(const Basis& basis, const Volume& volume) {
   return volumeGrids(basis, volume.visibilityPerProbe, volume.hasProbeStates(), volume.distanceMap,
+                     distanceGridsWritten(volume.distanceMap),
                      volume.keepsSkyDirect, volume.keepsSkyBounced);
 }
 
@@ -81,6 +92,7 @@ FloatColumn floatColumn(const Volume& v, const VolumeGrid& grid, int component) 
     case VolumeGrid::Kind::SkyDirect: return {v.skyDirect.data() + at, v.coefficientsPerProbe};
     case VolumeGrid::Kind::SkyBounced: return {v.skyBounced.data() + at, v.coefficientsPerProbe};
     case VolumeGrid::Kind::Visibility: return {v.visibility.data() + at, v.visibilityPerProbe};
+    case VolumeGrid::Kind::DistanceMap:
     case VolumeGrid::Kind::DistanceMoments:
     case VolumeGrid::Kind::SkyVisibilityMap: return {v.distanceMoments.data() + at, v.distanceMomentsPerProbe()};
     case VolumeGrid::Kind::ProbeState:
@@ -97,6 +109,7 @@ bool setGridValue(Volume& v, const VolumeGrid& grid, int component, std::int64_t
     case VolumeGrid::Kind::SkyDirect: v.skyDirect[row * v.coefficientsPerProbe + grid.index[component]] = value; break;
     case VolumeGrid::Kind::SkyBounced: v.skyBounced[row * v.coefficientsPerProbe + grid.index[component]] = value; break;
     case VolumeGrid::Kind::Visibility: v.visibility[row * v.visibilityPerProbe + grid.index[component]] = value; break;
+    case VolumeGrid::Kind::DistanceMap:
     case VolumeGrid::Kind::DistanceMoments:
     case VolumeGrid::Kind::SkyVisibilityMap:
       v.distanceMoments[row * v.distanceMomentsPerProbe() + grid.index[component]] = value;

@@ -16,18 +16,17 @@ namespace baker {
 //    it: the same grids prefixed "sky_direct_", e.g. "sky_direct_rgb_NN"; the sky's part off
 //    surfaces (Volume::skyBounced) likewise, prefixed "sky_bounced_";
 //  - sky visibility, function NN of channel 0's set: a scalar grid "visibility_NN";
-//  - distance moments, value NNN of the probe's distance map (volume/DistanceMoments.h): a scalar
-//    grid "distance_moments_NNN"; when the map carries the sky's, texel NNN's escaped share is
-//    "sky_visibility_map_NNN";
+//  - the probe's distance map (volume/DistanceMoments.h), as DistanceGrids says;
 //  - "probe_state" (0 inside geometry and filled from neighbours, 1 valid, 2 moved out of
 //    geometry) and "probe_offset" (world-space move from the grid position, three components).
 struct VolumeGrid {
-  // DistanceMoments and SkyVisibilityMap both index the probe's distance-map values.
+  // DistanceMap, DistanceMoments and SkyVisibilityMap index the probe's distance-map values.
   enum class Kind {
     Coefficients,
     SkyDirect,
     SkyBounced,
     Visibility,
+    DistanceMap,
     DistanceMoments,
     SkyVisibilityMap,
     ProbeState,
@@ -41,9 +40,22 @@ struct VolumeGrid {
   int index[3] = {0, 0, 0};
 };
 
+// How a file holds each probe's distance map:
+//  - RgbPerTexel, how a map with the sky's share is written (files of format 6): texel NNN's mean
+//    distance, mean squared distance and escaped share as R, G and B of one grid "distance_map_NNN"
+//    (a grid per value cost a third of a bake's write in OpenVDB's per-grid work, and its leaves of
+//    one float compress worse);
+//  - ScalarPerValue, files before and maps without the sky's share: value NNN of the probe's map
+//    as a scalar grid "distance_moments_NNN", the escaped shares as "sky_visibility_map_NNN".
+enum class DistanceGrids { RgbPerTexel, ScalarPerValue };
+// The form a map of `layout` is written in now.
+DistanceGrids distanceGridsWritten(const DistanceMapLayout& layout);
+
+// `distanceGrids`: the form of the file read, or distanceGridsWritten for one being written.
 std::vector<VolumeGrid> volumeGrids(const Basis& basis, int visibilityPerProbe, bool hasProbeStates,
-                                    const DistanceMapLayout& distanceMap, bool skyDirect, bool skyBounced);
-// The grids `volume` holds (its probe states as Volume::hasProbeStates says).
+                                    const DistanceMapLayout& distanceMap, DistanceGrids distanceGrids, bool skyDirect,
+                                    bool skyBounced);
+// The grids `volume` is written with (its probe states as Volume::hasProbeStates says).
 std::vector<VolumeGrid> volumeGrids(const Basis& basis, const Volume& volume);
 
 // Names of a grid's components where a format stores them one by one (EXR channels):

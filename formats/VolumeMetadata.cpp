@@ -15,12 +15,19 @@
 namespace baker {
 namespace {
 
+constexpr const char* kOctahedralEncoding =
+    "octahedral, +Y up: p = (d.x, d.z) / (|d.x| + |d.y| + |d.z|), for d.y < 0 folded to ((1 - |p.y|) sign p.x, "
+    "(1 - |p.x|) sign p.y) with sign 0 = +1; (u, v) = (p + 1) / 2; texel (i, j) covers [i, i + 1) / size in u and "
+    "[j, j + 1) / size in v";
+constexpr const char* kInvalidProbesHoldZeros = "probes inside geometry hold zeros: leak-aware readers turn them away";
+
 const char* kindName(VolumeGrid::Kind kind) {
   switch (kind) {
     case VolumeGrid::Kind::Coefficients: return "irradiance_coefficients";
     case VolumeGrid::Kind::SkyDirect: return "sky_direct_coefficients";
     case VolumeGrid::Kind::SkyBounced: return "sky_bounced_coefficients";
     case VolumeGrid::Kind::Visibility: return "sky_visibility_coefficients";
+    case VolumeGrid::Kind::DistanceMap: return "distance_map";
     case VolumeGrid::Kind::DistanceMoments: return "distance_moments";
     case VolumeGrid::Kind::SkyVisibilityMap: return "sky_visibility_map";
     case VolumeGrid::Kind::ProbeState: return "probe_state";
@@ -39,12 +46,13 @@ std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume
                                                                     bool hasProbeStates) {
   nlohmann::json layout = nlohmann::json::array();
   for (const VolumeGrid& g :
-       volumeGrids(basis, volume.visibilityPerProbe, hasProbeStates, volume.distanceMap, volume.keepsSkyDirect,
-                   volume.keepsSkyBounced)) {
+       volumeGrids(basis, volume.visibilityPerProbe, hasProbeStates, volume.distanceMap,
+                   distanceGridsWritten(volume.distanceMap), volume.keepsSkyDirect, volume.keepsSkyBounced)) {
     nlohmann::json entry = {{"name", g.name}, {"kind", kindName(g.kind)}, {"components", g.components}};
     if (g.kind == VolumeGrid::Kind::Coefficients || g.kind == VolumeGrid::Kind::SkyDirect ||
         g.kind == VolumeGrid::Kind::SkyBounced || g.kind == VolumeGrid::Kind::Visibility ||
-        g.kind == VolumeGrid::Kind::DistanceMoments || g.kind == VolumeGrid::Kind::SkyVisibilityMap)
+        g.kind == VolumeGrid::Kind::DistanceMap || g.kind == VolumeGrid::Kind::DistanceMoments ||
+        g.kind == VolumeGrid::Kind::SkyVisibilityMap)
       entry["index"] = std::vector<int>(g.index, g.index + g.components);
     layout.push_back(entry);
   }
@@ -52,7 +60,7 @@ std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume
   const bool radiance = signal == StoredSignal::Radiance;
   std::vector<std::pair<std::string, std::string>> meta = {
       {"baker.version", BAKER_VERSION},
-      {"baker.format_version", std::to_string(kVolumeFormatVersion)},
+      {"baker.format_version", std::to_string(formatVersionOf(volume))},
       {"baker.basis", basis.name()},
       {"baker.quantity", storedSignalName(signal)},
       {"baker.units", radiance ? "coefficients of the incoming radiance L(w) in the scene's radiance units; irradiance "
@@ -135,15 +143,32 @@ void readShard(const std::vector<std::pair<std::string, std::string>>& metadata,
                                  kMaxShards));
 }
 
+int formatVersionOf(const Volume& volume) {
+  return volume.distanceMomentsPerProbe() > 0 && distanceGridsWritten(volume.distanceMap) == DistanceGrids::RgbPerTexel
+             ? kTexelGridsFormatVersion
+             : kVolumeFormatVersion;
+}
+
 nlohmann::json distanceMapDescription(const DistanceMapLayout& layout) {
+  if (distanceGridsWritten(layout) == DistanceGrids::RgbPerTexel)
+    return {{"size", layout.size},
+            {"cap", layout.cap},
+            {"sharpness", layout.sharpness()},
+            {"values_per_probe", layout.valuesPerProbe()},
+            {"texel_grids", "rgb"},
+            {"encoding", kOctahedralEncoding},
+            {"values",
+             "distance_map_NNN holds texel t = NNN = i + size * j: R the mean distance to the first surface, G the "
+             "mean squared distance, in units of cap and cap^2 (rays that escape, and distances beyond the cap, count "
+             "as the cap), B the share of the rays that escaped to the sky, in [0, 1]; each ray w weighs "
+             "max(0, c.w)^sharpness in the texel of direction c"},
+            {"sky_visibility", true},
+            {"invalid_probes", kInvalidProbesHoldZeros}};
   return {{"size", layout.size},
           {"cap", layout.cap},
           {"sharpness", layout.sharpness()},
           {"values_per_probe", layout.valuesPerProbe()},
-          {"encoding",
-           "octahedral, +Y up: p = (d.x, d.z) / (|d.x| + |d.y| + |d.z|), for d.y < 0 folded to ((1 - |p.y|) sign p.x, "
-           "(1 - |p.x|) sign p.y) with sign 0 = +1; (u, v) = (p + 1) / 2; texel (i, j) covers [i, i + 1) / size in u "
-           "and [j, j + 1) / size in v"},
+          {"encoding", kOctahedralEncoding},
           {"values",
            "distance_moments_NNN: value 2t is the mean distance to the first surface, 2t + 1 the mean squared "
            "distance, of texel t = i + size * j, in units of cap and cap^2; rays that escape, and distances beyond "
@@ -152,7 +177,7 @@ nlohmann::json distanceMapDescription(const DistanceMapLayout& layout) {
           {"sky_visibility_values",
            "with sky_visibility: sky_visibility_map_NNN, value 2 * size * size + t of the probe, is the share of texel "
            "t's rays (weighted as the moments) that escaped to the sky, in [0, 1]"},
-          {"invalid_probes", "probes inside geometry hold zeros: leak-aware readers turn them away"}};
+          {"invalid_probes", kInvalidProbesHoldZeros}};
 }
 
 namespace {
@@ -176,6 +201,9 @@ void readDistanceMap(const std::vector<std::pair<std::string, std::string>>& met
     layout.size = map.at("size").get<int>();
     layout.cap = map.at("cap").get<double>();
     layout.skyVisibility = map.value("sky_visibility", false);
+    if (map.contains("texel_grids") && !(map["texel_grids"] == "rgb" && layout.skyVisibility))
+      throw InputError(fmt::format("{}: {} \"texel_grids\" is {}; this reader knows \"rgb\", with \"sky_visibility\" "
+                                   "true", path, kDistanceMapKey, map["texel_grids"].dump()));
   } catch (const nlohmann::json::exception& e) {
     throw InputError(fmt::format("{}: {} is not a distance map's description: {}", path, kDistanceMapKey, oneLine(e.what())));
   }
@@ -186,6 +214,15 @@ void readDistanceMap(const std::vector<std::pair<std::string, std::string>>& met
     throw InputError(fmt::format("{}: {} \"cap\" must be a positive distance whose square is finite", path,
                                  kDistanceMapKey));
   volume.distanceMap = layout;
+}
+
+DistanceGrids distanceGridsInFile(const std::vector<std::pair<std::string, std::string>>& metadata) {
+  const std::string* value = metadataValue(metadata, kDistanceMapKey);
+  if (!value) return DistanceGrids::ScalarPerValue;
+  // readDistanceMap has refused any other value.
+  const nlohmann::json map = nlohmann::json::parse(*value, nullptr, /*allow_exceptions=*/false);
+  return map.is_object() && map.contains("texel_grids") && map["texel_grids"] == "rgb" ? DistanceGrids::RgbPerTexel
+                                                                                      : DistanceGrids::ScalarPerValue;
 }
 
 nlohmann::json skyMetadata(const SkyRadiance& sky) {

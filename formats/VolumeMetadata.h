@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "basis/Basis.h"
+#include "formats/VolumeLayout.h"
 #include "volume/Volume.h"
 
 namespace baker {
@@ -38,6 +39,12 @@ constexpr int kVolumeFormatVersion = 3;
 // missing probes for held ones.
 constexpr int kLevelsFormatVersion = 5;
 constexpr int kFirstLevelsFormatVersion = 4;
+// 6: the distance map is held as one RGB grid per texel (DistanceGrids::RgbPerTexel); only such
+// files carry it, so that a reader of version 5 refuses them rather than missing the map's grids.
+constexpr int kTexelGridsFormatVersion = 6;
+constexpr int kNewestFormatVersion = kTexelGridsFormatVersion;
+// The version of a uniform volume's file: 6 when its distance map is written RGB per texel, else 3.
+int formatVersionOf(const Volume& volume);
 
 // A volume with distance moments describes its map under this key (JSON): "size", "cap" (world
 // units), "sharpness", "values_per_probe", and in words the encoding, the texel order and the units.
@@ -47,6 +54,9 @@ nlohmann::json distanceMapDescription(const DistanceMapLayout& layout);
 // key when its size or cap is out of range.
 void readDistanceMap(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume,
                      const std::string& path);
+// How the file of `metadata` holds its distance map: RgbPerTexel when the key says "texel_grids":
+// "rgb", ScalarPerValue otherwise (files before format 6).
+DistanceGrids distanceGridsInFile(const std::vector<std::pair<std::string, std::string>>& metadata);
 
 // The sky a volume's light came from (volume/SkyRadiance.h), under this key (JSON): "width",
 // "height", "radiance" (r, g, b per texel) and the layout in words.

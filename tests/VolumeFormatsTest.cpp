@@ -1,3 +1,4 @@
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -321,7 +322,7 @@ TEST(VolumeFormats, VdbWrittenGridByGridIsWhatOpenVdbWrites) {
   const std::string ourUuid = ours.getUniqueTag();
   // In the file's order, which is the layout's (getGrids would sort them by name).
   openvdb::GridPtrVec grids;
-  for (const VolumeGrid& spec : volumeGrids(*basis, basis->functions(0).count(), true, DistanceMapLayout{0, 0.0}, false, false))
+  for (const VolumeGrid& spec : volumeGrids(*basis, basis->functions(0).count(), true, DistanceMapLayout{0, 0.0}, DistanceGrids::RgbPerTexel, false, false))
     grids.push_back(ours.readGrid(spec.name));
   ours.close();
   ASSERT_EQ(grids.size(), 20u);
@@ -341,6 +342,84 @@ TEST(VolumeFormats, VdbWrittenGridByGridIsWhatOpenVdbWrites) {
   const std::size_t common = std::min(a.size(), b.size());
   EXPECT_TRUE(a == b) << "sizes " << a.size() << " and " << b.size() << ", first difference at byte "
                       << std::distance(a.begin(), std::mismatch(a.begin(), a.begin() + common, b.begin()).first);
+}
+
+// A volume is written with one RGB grid per distance-map texel (format 6); files before held a
+// scalar grid per value (format 3) and still read. Both give back the map's floats exactly, in
+// .vdb and in EXR slices.
+TEST(VolumeFormats, DistanceMapsReadFromEitherLayout) {
+  const std::string dir = test::makeTempDir("formats_distance_layouts");
+  const auto basis = makeBasis("sh-l1");
+  Volume v = randomVolume(*basis, 21, {9, 3, 10});
+  v.distanceMap = DistanceMapLayout::baked(4, 0.9375);
+  std::mt19937 rng(22);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  v.distanceMoments.resize(std::size_t(v.grid.probeCount() * v.distanceMomentsPerProbe()));
+  for (float& m : v.distanceMoments) m = unit(rng);
+  writeVdb(v, *basis, dir + "/new.vdb");
+  writeExrSlices(v, *basis, dir + "/exr", ExrPrecision::Float);
+  for (const std::string& path : {dir + "/new.vdb", dir + "/exr"}) {
+    const Volume back = readVolume(path);
+    EXPECT_TRUE(back.distanceMoments == v.distanceMoments) << path;
+    EXPECT_EQ(back.distanceMap.size, 4) << path;
+    EXPECT_TRUE(back.distanceMap.skyVisibility) << path;
+  }
+
+  // The same volume as a format-3 file: the new file's grids and metadata, each texel's grid cut
+  // into its three scalar grids of then.
+  openvdb::initialize();
+  openvdb::io::File file(dir + "/new.vdb");
+  file.open(/*delayLoad=*/false);
+  openvdb::MetaMap metadata = *file.getMetadata();
+  EXPECT_EQ(metadata.metaValue<std::string>("baker.format_version"), "6");
+  nlohmann::json map = nlohmann::json::parse(metadata.metaValue<std::string>("baker.distance_map"));
+  EXPECT_EQ(map.at("texel_grids"), "rgb");
+  openvdb::GridPtrVec grids;
+  std::vector<openvdb::FloatGrid::Ptr> scalars(std::size_t(3 * v.distanceMap.texels()));
+  const openvdb::GridPtrVecPtr written = file.getGrids();
+  for (const openvdb::GridBase::Ptr& grid : *written) {
+    const std::string name = grid->getName();
+    if (name.rfind("distance_map_", 0) != 0) {
+      grids.push_back(grid);
+      continue;
+    }
+    const int t = std::stoi(name.substr(13));
+    const auto rgb = openvdb::gridPtrCast<openvdb::Vec3SGrid>(grid);
+    ASSERT_TRUE(rgb) << name << " is not an RGB grid";
+    for (int c = 0; c < 3; ++c) {
+      auto scalar = openvdb::FloatGrid::create(0.0f);
+      scalar->setTransform(grid->transform().copy());
+      for (auto voxel = rgb->cbeginValueOn(); voxel; ++voxel) scalar->tree().setValue(voxel.getCoord(), (*voxel)[c]);
+      const int value = c < 2 ? 2 * t + c : 2 * v.distanceMap.texels() + t;
+      scalar->setName(c < 2 ? fmt::format("distance_moments_{:03}", value) : fmt::format("sky_visibility_map_{:03}", t));
+      scalars[std::size_t(value)] = scalar;
+    }
+  }
+  file.close();
+  for (const auto& scalar : scalars) {
+    ASSERT_TRUE(scalar);
+    grids.push_back(scalar);
+  }
+  map.erase("texel_grids");
+  metadata.removeMeta("baker.distance_map");
+  metadata.insertMeta("baker.distance_map", openvdb::StringMetadata(map.dump()));
+  metadata.removeMeta("baker.format_version");
+  metadata.insertMeta("baker.format_version", openvdb::StringMetadata("3"));
+  metadata.removeMeta(kVdbChecksumKey);
+  metadata.insertMeta(kVdbChecksumKey, openvdb::StringMetadata(kVdbChecksumPlaceholder));
+  openvdb::io::File(dir + "/old.vdb").write(grids, metadata);
+  sealVdbChecksum(dir + "/old.vdb");
+  const Volume old = readVolume(dir + "/old.vdb");
+  EXPECT_TRUE(old.distanceMoments == v.distanceMoments);
+  expectSame(v, old, 0.0, "format 3");
+
+  // A layout this reader does not know is refused, naming the key.
+  map["texel_grids"] = "atlas";
+  metadata.removeMeta("baker.distance_map");
+  metadata.insertMeta("baker.distance_map", openvdb::StringMetadata(map.dump()));
+  openvdb::io::File(dir + "/unknown.vdb").write(grids, metadata);
+  sealVdbChecksum(dir + "/unknown.vdb");
+  EXPECT_NE(errorOf(dir + "/unknown.vdb").find("texel_grids"), std::string::npos) << errorOf(dir + "/unknown.vdb");
 }
 
 // OpenVDB writes a random UUID into each header; ours is derived from the content, so the same
