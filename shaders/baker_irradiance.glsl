@@ -482,7 +482,8 @@ BAKER_SPECULAR(AdHemi9, 7, bakerRadianceAdHemi9)
 // ---- Leak-aware weights (docs/LEAKS.md). A volume with "baker.distance_map" holds per probe an
 // N × N octahedral map of the mean and mean squared distance to the first surface, in units of
 // the map's cap. Pack each probe's map as an N × N tile of a two-channel texture (R: value 2t,
-// G: value 2t + 1 of texel t = i + N·j at tile texel (i, j)); `tile` is its first texel. Multiply
+// G: value 2t + 1 of texel t = i + N·j at tile texel (i, j): the R and G of grid distance_map_t);
+// `tile` is its first texel. Multiply
 // each corner's trilinear weight by bakerLeakWeight and divide by the sum of the products.
 vec2 bakerOctahedralEncode(vec3 d) {
   vec2 p = d.xz / (abs(d.x) + abs(d.y) + abs(d.z));
