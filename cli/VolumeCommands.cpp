@@ -163,6 +163,32 @@ int runSampleCommand(int argc, char** argv) {
   });
 }
 
+namespace {
+
+// Each grid with its smallest and largest value over every level, named as the file holds them
+// (`distanceGrids`: a file of format 3 keeps a scalar grid per distance-map value).
+nlohmann::json gridRanges(const AdaptiveVolume& volume, const Basis& basis, DistanceGrids distanceGrids) {
+  const Volume& v = volume.coarsest();
+  nlohmann::json grids = nlohmann::json::array();
+  for (const VolumeGrid& grid : volumeGrids(basis, v.visibilityPerProbe, v.hasProbeStates(), v.distanceMap,
+                                            distanceGrids, v.keepsSkyDirect, v.keepsSkyBounced)) {
+    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+    for (const Volume& level : volume.levels)
+      for (std::int64_t row = 0; row < level.rows.count(level.grid); ++row) {
+        const std::int64_t probe = level.rows.probeAt(level.grid, row);
+        for (int c = 0; c < grid.components; ++c) {
+          const float value = gridValue(level, grid, c, probe);
+          lo = std::min(lo, value);
+          hi = std::max(hi, value);
+        }
+      }
+    grids.push_back({{"name", grid.name}, {"components", grid.components}, {"min", lo}, {"max", hi}});
+  }
+  return grids;
+}
+
+}  // namespace
+
 int runInspectCommand(int argc, char** argv) {
   CLI::App app{"Describe what a volume holds."};
   std::string path;
@@ -174,20 +200,7 @@ int runInspectCommand(int argc, char** argv) {
     const Volume& v = volume.coarsest();
     const std::unique_ptr<Basis> basis = basisOf(v);
     const ProbeGrid& g = v.grid;
-    nlohmann::json grids = nlohmann::json::array();
-    for (const VolumeGrid& grid : volumeGrids(*basis, v)) {
-      float lo = std::numeric_limits<float>::infinity(), hi = -lo;
-      for (const Volume& level : volume.levels)
-        for (std::int64_t row = 0; row < level.rows.count(level.grid); ++row) {
-          const std::int64_t probe = level.rows.probeAt(level.grid, row);
-          for (int c = 0; c < grid.components; ++c) {
-            const float value = gridValue(level, grid, c, probe);
-            lo = std::min(lo, value);
-            hi = std::max(hi, value);
-          }
-        }
-      grids.push_back({{"name", grid.name}, {"components", grid.components}, {"min", lo}, {"max", hi}});
-    }
+    const nlohmann::json grids = gridRanges(volume, *basis, distanceGridsOf(path));
     std::int64_t counts[kProbeStateCount] = {};
     const nlohmann::json levels = levelsJson(volume, counts);
     const std::uintmax_t bytes = bytesOf(path);

@@ -104,6 +104,7 @@ void requireConsistent(const LevelSize& size, int level, const LevelSize& first,
 
 void writeAdaptiveExrSlices(const AdaptiveVolume& volume, const Basis& basis, const std::string& directory,
                             ExrPrecision precision) {
+  requireNoDistanceMap(volume);
   AtomicDirectory out(directory, replaceableExrDirectory);
   nlohmann::json levels = nlohmann::json::array();
   for (std::size_t k = 0; k < volume.levels.size(); ++k) {

@@ -13,6 +13,7 @@
 
 #include "common/Error.h"
 #include "common/Fnv1a64.h"
+#include "formats/ReadWithZeroedField.h"
 
 namespace baker {
 namespace {
@@ -65,20 +66,8 @@ std::vector<std::uint64_t> digitOffsets(std::ifstream& in) {
 
 // The hash of the file's bytes with the kDigits bytes at `digits` read as '0'.
 std::uint64_t hashWithPlaceholder(std::ifstream& in, std::uint64_t digits) {
-  in.clear();
-  in.seekg(0);
   Fnv1a64 hash;
-  std::vector<char> buffer(1 << 16);
-  std::uint64_t position = 0;
-  while (in) {
-    in.read(buffer.data(), std::streamsize(buffer.size()));
-    const std::size_t count = std::size_t(in.gcount());
-    // The placeholder's bytes in this piece, if any: [from, to).
-    const std::uint64_t from = std::max(digits, position), to = std::min(digits + kDigits, position + count);
-    if (from < to) std::fill(buffer.begin() + std::ptrdiff_t(from - position), buffer.begin() + std::ptrdiff_t(to - position), '0');
-    hash.add(buffer.data(), count);
-    position += count;
-  }
+  readWithZeroedField(in, digits, kDigits, [&](const char* bytes, std::size_t count) { hash.add(bytes, count); });
   return hash.value();
 }
 

@@ -19,6 +19,28 @@
 namespace baker {
 namespace {
 
+// Every metadata entry as text.
+std::vector<std::pair<std::string, std::string>> textOf(const openvdb::MetaMap& meta) {
+  std::vector<std::pair<std::string, std::string>> text;
+  for (auto it = meta.beginMeta(); it != meta.endMeta(); ++it) text.push_back({it->first, it->second->str()});
+  return text;
+}
+
+// What `f` makes of the file's metadata, the grids left unread.
+template <typename F>
+auto fromVdbMetadata(const std::string& path, F f) {
+  openvdb::initialize();
+  try {
+    openvdb::io::File file(path);
+    file.open(false);
+    auto result = f(*file.getMetadata());
+    file.close();
+    return result;
+  } catch (const openvdb::Exception& e) {
+    throw InputError(fmt::format("{}: not a readable OpenVDB volume: {}", path, e.what()));
+  }
+}
+
 template <typename T>
 T required(const openvdb::MetaMap& meta, const std::string& key, const std::string& path) {
   auto value = meta.getMetadata<openvdb::TypedMetadata<T>>(key);
@@ -100,7 +122,7 @@ VolumeHeader vdbHeader(openvdb::io::File& file, const openvdb::MetaMap& meta, co
   header.visibilityPerProbe = visibility ? visibility->value() : 0;
   header.grid = levelGrid(meta, "baker.", path);
   header.hasProbeStates = file.hasGrid("probe_state");
-  for (auto it = meta.beginMeta(); it != meta.endMeta(); ++it) header.text.push_back({it->first, it->second->str()});
+  header.text = textOf(meta);
   return header;
 }
 
@@ -259,16 +281,11 @@ AdaptiveVolume readAdaptiveVdb(const std::string& path) {
 }
 
 int vdbLevelCount(const std::string& path) {
-  openvdb::initialize();
-  try {
-    openvdb::io::File file(path);
-    file.open(false);
-    const int levels = levelCount(*file.getMetadata(), path);
-    file.close();
-    return levels;
-  } catch (const openvdb::Exception& e) {
-    throw InputError(fmt::format("{}: not a readable OpenVDB volume: {}", path, e.what()));
-  }
+  return fromVdbMetadata(path, [&](const openvdb::MetaMap& meta) { return levelCount(meta, path); });
+}
+
+std::vector<std::pair<std::string, std::string>> vdbMetadataText(const std::string& path) {
+  return fromVdbMetadata(path, [](const openvdb::MetaMap& meta) { return textOf(meta); });
 }
 
 }  // namespace baker

@@ -1,5 +1,7 @@
 #pragma once
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "formats/VolumeHeader.h"
 #include "volume/AdaptiveVolume.h"
@@ -17,5 +19,7 @@ AdaptiveVolume readAdaptiveVdb(const std::string& path);
 
 // How many levels the file holds (baker.levels; 1 without it), from its metadata only.
 int vdbLevelCount(const std::string& path);
+// The file's "baker.*" metadata as text, read without its grids.
+std::vector<std::pair<std::string, std::string>> vdbMetadataText(const std::string& path);
 
 }  // namespace baker

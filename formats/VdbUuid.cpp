@@ -2,11 +2,11 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <cstdint>
 #include <fstream>
 #include <stdexcept>
-#include <vector>
+
+#include "formats/ReadWithZeroedField.h"
 
 namespace baker {
 namespace {
@@ -30,30 +30,21 @@ bool looksLikeUuid(const char* text) {
 void deriveVdbUuid(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error(fmt::format("{}: cannot reopen the written file to set its UUID", path));
-  std::vector<char> buffer(1 << 16);
-  in.read(buffer.data(), std::streamsize(kUuidOffset + kUuidLength));
-  if (std::size_t(in.gcount()) != kUuidOffset + kUuidLength || !looksLikeUuid(buffer.data() + kUuidOffset))
+  char header[kUuidOffset + kUuidLength];
+  in.read(header, std::streamsize(sizeof header));
+  if (std::size_t(in.gcount()) != sizeof header || !looksLikeUuid(header + kUuidOffset))
     throw std::runtime_error(fmt::format("{}: the written file has no UUID where OpenVDB writes one", path));
 
   // Two FNV-1a hashes with different offset bases: 128 bits, of which the UUID keeps 122.
   std::uint64_t first = 0xcbf29ce484222325ull, second = 0x84222325cbf29ce4ull;
   constexpr std::uint64_t kPrime = 0x100000001b3ull;
-  in.clear();
-  in.seekg(0);
-  std::uint64_t position = 0;
-  while (in) {
-    in.read(buffer.data(), std::streamsize(buffer.size()));
-    const std::size_t count = std::size_t(in.gcount());
-    // The UUID's bytes in this piece, if any, read as '0': [from, to).
-    const std::uint64_t from = std::max(kUuidOffset, position), to = std::min(kUuidOffset + kUuidLength, position + count);
-    if (from < to) std::fill(buffer.begin() + std::ptrdiff_t(from - position), buffer.begin() + std::ptrdiff_t(to - position), '0');
+  readWithZeroedField(in, kUuidOffset, kUuidLength, [&](const char* bytes, std::size_t count) {
     for (std::size_t i = 0; i < count; ++i) {
-      const unsigned char byte = static_cast<unsigned char>(buffer[i]);
+      const unsigned char byte = static_cast<unsigned char>(bytes[i]);
       first = (first ^ byte) * kPrime;
       second = (second ^ byte) * kPrime;
     }
-    position += count;
-  }
+  });
   in.close();
 
   std::string hex = fmt::format("{:016x}{:016x}", first, second);

@@ -32,7 +32,7 @@ namespace {
 
 // A stored brick (exactly one OpenVDB leaf) and, for each probe of it the level holds, the
 // probe's voxel in the leaf and its row in the volume's arrays. Worked out once per level rather
-// than once per grid: a volume with distance maps has over two hundred grids.
+// than once per grid: a volume has dozens of grids (84 for sh-l2 with a distance map).
 struct StoredBrick {
   openvdb::Coord origin;
   std::vector<std::pair<openvdb::Index, std::int64_t>> voxelRows;
@@ -91,8 +91,8 @@ openvdb::MetaMap fileMetadata(const Volume& v, const Basis& basis, bool hasProbe
 // Why the last file operation failed, as far as the C library says.
 std::string failureReason() { return errno != 0 ? std::strerror(errno) : "the output stream failed"; }
 
-// OpenVDB's public writer takes every grid at once, so all of a volume's grids (228 for sh-l2
-// with distance maps) would be alive together, each with its own 32³ and 16³ internal nodes.
+// OpenVDB's public writer takes every grid at once, so all of a volume's grids (84 for sh-l2
+// with a distance map, 102 with the sky's parts) would be alive together, each with its own 32³ and 16³ internal nodes.
 // Writing sixteen grids at a time bounds that; Archive's protected members write the same header
 // and grid records as File::write, given what holds for our grids: none is null, their names are
 // unique and not empty (so File::write would rename none), and none shares its tree with another
@@ -248,6 +248,7 @@ void writeVdb(const Volume& volume, const Basis& basis, const std::string& path)
 }
 
 void writeAdaptiveVdb(const AdaptiveVolume& volume, const Basis& basis, const std::string& path) {
+  requireNoDistanceMap(volume);
   // Every level has probe states, though a shard's share may hold no probe of some level.
   openvdb::MetaMap metadata = fileMetadata(volume.coarsest(), basis, /*hasProbeStates=*/true);
   metadata.removeMeta("baker.format_version");

@@ -20,7 +20,8 @@ constexpr int kOldestFormatRead = 2;
 
 namespace {
 
-void requireKnownFormatVersion(const std::vector<std::pair<std::string, std::string>>& text, const std::string& path) {
+// The file's format version, refused unless this reader knows it.
+int knownFormatVersion(const std::vector<std::pair<std::string, std::string>>& text, const std::string& path) {
   const auto entry = std::find_if(text.begin(), text.end(), [](const auto& e) { return e.first == "baker.format_version"; });
   if (entry == text.end()) throw InputError(fmt::format("{}: baker.format_version is missing", path));
   int version = 0;
@@ -33,12 +34,27 @@ void requireKnownFormatVersion(const std::vector<std::pair<std::string, std::str
   if (version < kOldestFormatRead)
     throw InputError(fmt::format("{}: baker.format_version is {}: too old to read (formats {} to {}); bake it again",
                                  path, version, kOldestFormatRead, kNewestFormatVersion));
+  return version;
+}
+
+// A map held in RGB texel grids came with format 6, and format 6 holds a map with the sky's shares
+// no other way: a file that says otherwise has lost or gained the key.
+void requireDistanceGridsOfVersion(const std::vector<std::pair<std::string, std::string>>& text, int version,
+                                   const Volume& volume, const std::string& path) {
+  const bool rgb = distanceGridsInFile(text) == DistanceGrids::RgbPerTexel;
+  if (rgb && version < kTexelGridsFormatVersion)
+    throw InputError(fmt::format("{}: {} has \"texel_grids\" in a file of format {}; texel grids came with format {}",
+                                 path, kDistanceMapKey, version, kTexelGridsFormatVersion));
+  if (!rgb && version >= kTexelGridsFormatVersion && volume.distanceMomentsPerProbe() > 0 &&
+      volume.distanceMap.skyVisibility)
+    throw InputError(fmt::format("{}: {} has no \"texel_grids\": \"rgb\", which a file of format {} holding the sky's "
+                                 "shares has", path, kDistanceMapKey, version));
 }
 
 }  // namespace
 
 Volume VolumeHeader::emptyVolume(const std::string& path, PartReading parts) const {
-  requireKnownFormatVersion(text, path);
+  const int version = knownFormatVersion(text, path);
   Volume settingsOnly;
   readSettings(text, settingsOnly);
   const std::unique_ptr<Basis> basis = basisInFile(basisName, settingsOnly.settings, path);
@@ -66,6 +82,7 @@ Volume VolumeHeader::emptyVolume(const std::string& path, PartReading parts) con
   // that a damaged size is refused rather than exhausting memory.
   Volume volume;
   readDistanceMap(text, volume, path);
+  requireDistanceGridsOfVersion(text, version, volume, path);
   readSky(text, volume, path);
   readSkyDirect(text, volume, path);
   const double needed =

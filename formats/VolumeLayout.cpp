@@ -76,10 +76,6 @@ std::string componentName(const VolumeGrid& grid, int component) {
 float gridValue(const Volume& v, const VolumeGrid& grid, int component, std::int64_t probe) {
   const std::int64_t row = v.rowOf(probe);
   if (row < 0) return grid.kind == VolumeGrid::Kind::ProbeState ? float(ProbeState::Invalid) : 0.0f;
-  return rowValue(v, grid, component, row);
-}
-
-float rowValue(const Volume& v, const VolumeGrid& grid, int component, std::int64_t row) {
   if (grid.kind == VolumeGrid::Kind::ProbeState) return float(v.states[std::size_t(row)]);
   if (grid.kind == VolumeGrid::Kind::ProbeOffset) return v.offsets[std::size_t(row)][component];
   return floatColumn(v, grid, component)[row];
@@ -129,6 +125,12 @@ void prepareForReading(Volume& v, bool hasProbeStates) {
 
 std::vector<bool> storedBricks(const Volume& v) {
   return v.shard ? bricksWithAProbeOutsideGeometry(v) : bricksWorthStoring(v);
+}
+
+void requireNoDistanceMap(const AdaptiveVolume& volume) {
+  for (const Volume& level : volume.levels)
+    if (level.distanceMomentsPerProbe() > 0)
+      throw std::logic_error("a volume with levels holds a distance map, which its format has no grids for");
 }
 
 void requireFiniteVolume(const Volume& v) {

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "basis/Basis.h"
+#include "volume/AdaptiveVolume.h"
 #include "volume/Volume.h"
 
 namespace baker {
@@ -64,8 +65,6 @@ std::string componentName(const VolumeGrid& grid, int component);
 
 // Zero (an Invalid state) for a probe the volume does not hold.
 float gridValue(const Volume& volume, const VolumeGrid& grid, int component, std::int64_t probe);
-// The value in row `row` (Volume::rowOf) of a probe the volume holds.
-float rowValue(const Volume& volume, const VolumeGrid& grid, int component, std::int64_t row);
 
 // Where a component of a grid held as floats (not ProbeState or ProbeOffset) sits in a volume's
 // arrays: row r's value is at values[r * stride]. What a writer reads probe after probe, rather
@@ -92,5 +91,8 @@ std::vector<bool> storedBricks(const Volume& volume);
 
 // Writers refuse to store a NaN or an infinity (std::runtime_error: it would be a bug upstream).
 void requireFiniteVolume(const Volume& volume);
+// Writers of levels (format 5) refuse a level with a distance map (std::logic_error): that format
+// names no grid for one, and a reader of it would miss the map. Bakes with levels make none.
+void requireNoDistanceMap(const AdaptiveVolume& volume);
 
 }  // namespace baker

@@ -19,7 +19,6 @@ constexpr const char* kOctahedralEncoding =
     "octahedral, +Y up: p = (d.x, d.z) / (|d.x| + |d.y| + |d.z|), for d.y < 0 folded to ((1 - |p.y|) sign p.x, "
     "(1 - |p.x|) sign p.y) with sign 0 = +1; (u, v) = (p + 1) / 2; texel (i, j) covers [i, i + 1) / size in u and "
     "[j, j + 1) / size in v";
-constexpr const char* kInvalidProbesHoldZeros = "probes inside geometry hold zeros: leak-aware readers turn them away";
 
 const char* kindName(VolumeGrid::Kind kind) {
   switch (kind) {
@@ -150,34 +149,30 @@ int formatVersionOf(const Volume& volume) {
 }
 
 nlohmann::json distanceMapDescription(const DistanceMapLayout& layout) {
-  if (distanceGridsWritten(layout) == DistanceGrids::RgbPerTexel)
-    return {{"size", layout.size},
-            {"cap", layout.cap},
-            {"sharpness", layout.sharpness()},
-            {"values_per_probe", layout.valuesPerProbe()},
-            {"texel_grids", "rgb"},
-            {"encoding", kOctahedralEncoding},
-            {"values",
-             "distance_map_NNN holds texel t = NNN = i + size * j: R the mean distance to the first surface, G the "
-             "mean squared distance, in units of cap and cap^2 (rays that escape, and distances beyond the cap, count "
-             "as the cap), B the share of the rays that escaped to the sky, in [0, 1]; each ray w weighs "
-             "max(0, c.w)^sharpness in the texel of direction c"},
-            {"sky_visibility", true},
-            {"invalid_probes", kInvalidProbesHoldZeros}};
-  return {{"size", layout.size},
-          {"cap", layout.cap},
-          {"sharpness", layout.sharpness()},
-          {"values_per_probe", layout.valuesPerProbe()},
-          {"encoding", kOctahedralEncoding},
-          {"values",
-           "distance_moments_NNN: value 2t is the mean distance to the first surface, 2t + 1 the mean squared "
-           "distance, of texel t = i + size * j, in units of cap and cap^2; rays that escape, and distances beyond "
-           "the cap, count as the cap; each ray w weighs max(0, c.w)^sharpness in the texel of direction c"},
-          {"sky_visibility", layout.skyVisibility},
-          {"sky_visibility_values",
-           "with sky_visibility: sky_visibility_map_NNN, value 2 * size * size + t of the probe, is the share of texel "
-           "t's rays (weighted as the moments) that escaped to the sky, in [0, 1]"},
-          {"invalid_probes", kInvalidProbesHoldZeros}};
+  nlohmann::json map = {{"size", layout.size},
+                        {"cap", layout.cap},
+                        {"sharpness", layout.sharpness()},
+                        {"values_per_probe", layout.valuesPerProbe()},
+                        {"encoding", kOctahedralEncoding},
+                        {"sky_visibility", layout.skyVisibility},
+                        {"invalid_probes", "probes inside geometry hold zeros: leak-aware readers turn them away"}};
+  if (distanceGridsWritten(layout) == DistanceGrids::RgbPerTexel) {
+    map["texel_grids"] = "rgb";
+    map["values"] =
+        "distance_map_NNN holds texel t = NNN = i + size * j: R the mean distance to the first surface, G the mean "
+        "squared distance, in units of cap and cap^2 (rays that escape, and distances beyond the cap, count as the "
+        "cap), B the share of the rays that escaped to the sky, in [0, 1]; each ray w weighs max(0, c.w)^sharpness in "
+        "the texel of direction c";
+    return map;
+  }
+  map["values"] =
+      "distance_moments_NNN: value 2t is the mean distance to the first surface, 2t + 1 the mean squared distance, of "
+      "texel t = i + size * j, in units of cap and cap^2; rays that escape, and distances beyond the cap, count as the "
+      "cap; each ray w weighs max(0, c.w)^sharpness in the texel of direction c";
+  map["sky_visibility_values"] =
+      "with sky_visibility: sky_visibility_map_NNN, value 2 * size * size + t of the probe, is the share of texel t's "
+      "rays (weighted as the moments) that escaped to the sky, in [0, 1]";
+  return map;
 }
 
 namespace {
@@ -219,10 +214,9 @@ void readDistanceMap(const std::vector<std::pair<std::string, std::string>>& met
 DistanceGrids distanceGridsInFile(const std::vector<std::pair<std::string, std::string>>& metadata) {
   const std::string* value = metadataValue(metadata, kDistanceMapKey);
   if (!value) return DistanceGrids::ScalarPerValue;
-  // readDistanceMap has refused any other value.
+  // readDistanceMap refuses any value but "rgb".
   const nlohmann::json map = nlohmann::json::parse(*value, nullptr, /*allow_exceptions=*/false);
-  return map.is_object() && map.contains("texel_grids") && map["texel_grids"] == "rgb" ? DistanceGrids::RgbPerTexel
-                                                                                      : DistanceGrids::ScalarPerValue;
+  return map.is_object() && map.contains("texel_grids") ? DistanceGrids::RgbPerTexel : DistanceGrids::ScalarPerValue;
 }
 
 nlohmann::json skyMetadata(const SkyRadiance& sky) {

@@ -54,8 +54,8 @@ nlohmann::json distanceMapDescription(const DistanceMapLayout& layout);
 // key when its size or cap is out of range.
 void readDistanceMap(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume,
                      const std::string& path);
-// How the file of `metadata` holds its distance map: RgbPerTexel when the key says "texel_grids":
-// "rgb", ScalarPerValue otherwise (files before format 6).
+// How the file of `metadata` holds its distance map: RgbPerTexel when the key has "texel_grids"
+// (which readDistanceMap has checked is "rgb"), ScalarPerValue otherwise (files before format 6).
 DistanceGrids distanceGridsInFile(const std::vector<std::pair<std::string, std::string>>& metadata);
 
 // The sky a volume's light came from (volume/SkyRadiance.h), under this key (JSON): "width",

@@ -12,6 +12,7 @@
 #include "formats/ThreeJsProbeGrid.h"
 #include "formats/VdbReader.h"
 #include "formats/VolumeHeader.h"
+#include "formats/VolumeMetadata.h"
 
 namespace baker {
 
@@ -49,6 +50,18 @@ int levelCountOf(const std::string& path) {
   const nlohmann::json manifest = readExrManifest(path);
   const auto levels = manifest.find(kLevelsManifestKey);
   return levels != manifest.end() && levels->is_array() ? std::max<int>(1, int(levels->size())) : 1;
+}
+
+DistanceGrids distanceGridsOf(const std::string& path) {
+  const std::string format = volumeFormatOf(path);
+  if (format == "vdb") return distanceGridsInFile(vdbMetadataText(path));
+  if (format != "exr") return DistanceGrids::ScalarPerValue;  // an engine's export holds no map
+  std::vector<std::pair<std::string, std::string>> text;
+  const nlohmann::json manifest = readExrManifest(path);
+  if (const auto metadata = manifest.find("metadata"); metadata != manifest.end() && metadata->is_object())
+    for (const auto& [key, value] : metadata->items())
+      if (value.is_string()) text.push_back({key, value.get<std::string>()});
+  return distanceGridsInFile(text);
 }
 
 AdaptiveVolume readLevels(const std::string& path) {

@@ -4,6 +4,7 @@
 
 #include "basis/Basis.h"
 #include "formats/VolumeHeader.h"
+#include "formats/VolumeLayout.h"
 #include "volume/AdaptiveVolume.h"
 #include "volume/Volume.h"
 
@@ -22,6 +23,10 @@ AdaptiveVolume readLevels(const std::string& path);
 // How many levels the volume at `path` holds, from its metadata or manifest only: 1 for a
 // uniform volume.
 int levelCountOf(const std::string& path);
+
+// How the volume at `path` holds its distance map (DistanceGrids, VolumeLayout.h), from its
+// metadata or manifest only: what its grids are named in the file.
+DistanceGrids distanceGridsOf(const std::string& path);
 
 // Which format `path` holds, by its name or the files in its directory: "vdb", "exr", "bevy",
 // "threejs". InputError for a directory of none of them or a missing file.

@@ -13,6 +13,8 @@ bakes=(
   "room_cube_nn.vdb|data/default_room/default_room.gltf --basis ambient-cube --non-negative --rays 128 --spacing 0.5"
   "room_sg.vdb|data/default_room/default_room.gltf --basis sg-12 --rays 128 --spacing 0.5 --seed 7"
   "room_draft.vdb|data/default_room/default_room.gltf --basis ad-srbf --quality draft --spacing 1.0"
+  "room_adaptive.vdb|data/default_room/default_room.gltf --basis sh-l1 --placement adaptive --rays 64"
+  "room_shard.vdb|data/default_room/default_room.gltf --basis sh-l2 --rays 64 --shard 1/3"
   "yard_rgb.vdb|data/sunlit_yard/sunlit_yard.gltf --basis ad-rgb --rays 128"
   "yard_sh3.vdb|data/sunlit_yard/sunlit_yard.gltf --basis sh-l3 --quality draft"
   "window_ycocg.vdb|data/window_room/window_room.gltf --basis ad-ycocg --rays 96 --spacing 0.6"

@@ -15,6 +15,7 @@
 #include <sstream>
 #include <sys/resource.h>
 #include <thread>
+#include <tuple>
 
 #include "basis/BasisRegistry.h"
 #include "common/Error.h"
@@ -400,26 +401,63 @@ TEST(VolumeFormats, DistanceMapsReadFromEitherLayout) {
     ASSERT_TRUE(scalar);
     grids.push_back(scalar);
   }
-  map.erase("texel_grids");
-  metadata.removeMeta("baker.distance_map");
-  metadata.insertMeta("baker.distance_map", openvdb::StringMetadata(map.dump()));
-  metadata.removeMeta("baker.format_version");
-  metadata.insertMeta("baker.format_version", openvdb::StringMetadata("3"));
-  metadata.removeMeta(kVdbChecksumKey);
-  metadata.insertMeta(kVdbChecksumKey, openvdb::StringMetadata(kVdbChecksumPlaceholder));
-  openvdb::io::File(dir + "/old.vdb").write(grids, metadata);
-  sealVdbChecksum(dir + "/old.vdb");
-  const Volume old = readVolume(dir + "/old.vdb");
-  EXPECT_TRUE(old.distanceMoments == v.distanceMoments);
-  expectSame(v, old, 0.0, "format 3");
+  // `grids` under `metadata` with baker.distance_map `description` and format `version`.
+  const auto writeWith = [&](const std::string& name, const nlohmann::json& description, const std::string& version) {
+    metadata.removeMeta("baker.distance_map");
+    metadata.insertMeta("baker.distance_map", openvdb::StringMetadata(description.dump()));
+    metadata.removeMeta("baker.format_version");
+    metadata.insertMeta("baker.format_version", openvdb::StringMetadata(version));
+    metadata.removeMeta(kVdbChecksumKey);
+    metadata.insertMeta(kVdbChecksumKey, openvdb::StringMetadata(kVdbChecksumPlaceholder));
+    openvdb::io::File(dir + "/" + name).write(grids, metadata);
+    sealVdbChecksum(dir + "/" + name);
+    return dir + "/" + name;
+  };
+  nlohmann::json then = map;
+  then.erase("texel_grids");
+  const std::string old = writeWith("old.vdb", then, "3");
+  const Volume back = readVolume(old);
+  EXPECT_TRUE(back.distanceMoments == v.distanceMoments);
+  expectSame(v, back, 0.0, "format 3");
+  EXPECT_EQ(distanceGridsOf(old), DistanceGrids::ScalarPerValue) << "what `baker inspect` names the grids by";
+  EXPECT_EQ(distanceGridsOf(dir + "/new.vdb"), DistanceGrids::RgbPerTexel);
+  EXPECT_EQ(distanceGridsOf(dir + "/exr"), DistanceGrids::RgbPerTexel);
 
-  // A layout this reader does not know is refused, naming the key.
-  map["texel_grids"] = "atlas";
-  metadata.removeMeta("baker.distance_map");
-  metadata.insertMeta("baker.distance_map", openvdb::StringMetadata(map.dump()));
-  openvdb::io::File(dir + "/unknown.vdb").write(grids, metadata);
-  sealVdbChecksum(dir + "/unknown.vdb");
-  EXPECT_NE(errorOf(dir + "/unknown.vdb").find("texel_grids"), std::string::npos) << errorOf(dir + "/unknown.vdb");
+  // The key and the version must agree, and the key name a form this reader knows.
+  nlohmann::json atlas = map, noSky = map;
+  atlas["texel_grids"] = "atlas";
+  noSky["sky_visibility"] = false;
+  for (const auto& [name, description, version, expected] :
+       {std::tuple{"unknown.vdb", atlas, "6", "\"texel_grids\" is \"atlas\""},
+        std::tuple{"without_sky.vdb", noSky, "6", "\"texel_grids\" is \"rgb\"; this reader knows \"rgb\", with"},
+        std::tuple{"early_key.vdb", map, "3", "texel grids came with format 6"},
+        std::tuple{"lost_key.vdb", then, "6", "has no \"texel_grids\": \"rgb\""}}) {
+    const std::string error = errorOf(writeWith(name, description, version));
+    EXPECT_NE(error.find(expected), std::string::npos) << name << ": " << error;
+  }
+}
+
+// A map without the sky's shares (one read from a volume baked before relighting) is written as
+// then: a scalar grid per value, format 3, no "texel_grids".
+TEST(VolumeFormats, DistanceMapsWithoutTheSkysShareKeepFormat3) {
+  const std::string dir = test::makeTempDir("formats_distance_no_sky");
+  const auto basis = makeBasis("sh-l1");
+  Volume v = randomVolume(*basis, 23, {9, 3, 10});
+  v.distanceMap = DistanceMapLayout{4, 0.9375, /*skyVisibility=*/false};
+  std::mt19937 rng(24);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  v.distanceMoments.resize(std::size_t(v.grid.probeCount() * v.distanceMomentsPerProbe()));
+  for (float& m : v.distanceMoments) m = unit(rng);
+  writeVdb(v, *basis, dir + "/v.vdb");
+  openvdb::initialize();
+  openvdb::io::File file(dir + "/v.vdb");
+  file.open(/*delayLoad=*/false);
+  EXPECT_EQ(file.getMetadata()->metaValue<std::string>("baker.format_version"), "3");
+  EXPECT_FALSE(nlohmann::json::parse(file.getMetadata()->metaValue<std::string>("baker.distance_map")).contains("texel_grids"));
+  EXPECT_TRUE(file.hasGrid("distance_moments_031"));
+  EXPECT_FALSE(file.hasGrid("distance_map_000"));
+  file.close();
+  EXPECT_TRUE(readVolume(dir + "/v.vdb").distanceMoments == v.distanceMoments);
 }
 
 // OpenVDB writes a random UUID into each header; ours is derived from the content, so the same
