@@ -82,15 +82,19 @@ float gridValue(const Volume& v, const VolumeGrid& grid, int component, std::int
 }
 
 FloatColumn floatColumn(const Volume& v, const VolumeGrid& grid, int component) {
-  const int at = grid.index[component];
+  // A volume that holds no probe (a shard's empty part, a level without bricks) has empty arrays,
+  // whose data() may be null: no offset is applied to it, and no row is read.
+  const auto column = [&](const std::vector<float>& values, int stride) -> FloatColumn {
+    return {values.empty() ? nullptr : values.data() + grid.index[component], stride};
+  };
   switch (grid.kind) {
-    case VolumeGrid::Kind::Coefficients: return {v.coefficients.data() + at, v.coefficientsPerProbe};
-    case VolumeGrid::Kind::SkyDirect: return {v.skyDirect.data() + at, v.coefficientsPerProbe};
-    case VolumeGrid::Kind::SkyBounced: return {v.skyBounced.data() + at, v.coefficientsPerProbe};
-    case VolumeGrid::Kind::Visibility: return {v.visibility.data() + at, v.visibilityPerProbe};
+    case VolumeGrid::Kind::Coefficients: return column(v.coefficients, v.coefficientsPerProbe);
+    case VolumeGrid::Kind::SkyDirect: return column(v.skyDirect, v.coefficientsPerProbe);
+    case VolumeGrid::Kind::SkyBounced: return column(v.skyBounced, v.coefficientsPerProbe);
+    case VolumeGrid::Kind::Visibility: return column(v.visibility, v.visibilityPerProbe);
     case VolumeGrid::Kind::DistanceMap:
     case VolumeGrid::Kind::DistanceMoments:
-    case VolumeGrid::Kind::SkyVisibilityMap: return {v.distanceMoments.data() + at, v.distanceMomentsPerProbe()};
+    case VolumeGrid::Kind::SkyVisibilityMap: return column(v.distanceMoments, v.distanceMomentsPerProbe());
     case VolumeGrid::Kind::ProbeState:
     case VolumeGrid::Kind::ProbeOffset: break;
   }
