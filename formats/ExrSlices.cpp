@@ -252,7 +252,7 @@ Manifest readManifest(const nlohmann::json& m, const std::string& manifestPath) 
     manifest.scale = m.at("coefficient_scale").get<double>();
     manifest.slices = m.at("slices").get<std::vector<std::string>>();
     manifest.channelNames = m.at("channels").get<std::vector<std::string>>();
-    for (const auto& [key, value] : m.at("metadata").items()) manifest.header.text.push_back({key, value.get<std::string>()});
+    manifest.header.text = exrMetadataText(m.at("metadata"));
     if (m.contains("atlas")) {
       manifest.atlas = readAtlas(m.at("atlas"), manifestPath);
       manifest.header.heldBricks = manifest.atlas->bricks;
@@ -340,6 +340,12 @@ Volume readSliceSet(const std::filesystem::path& dir, const nlohmann::json& m, c
 }
 
 }  // namespace
+
+std::vector<std::pair<std::string, std::string>> exrMetadataText(const nlohmann::json& metadata) {
+  std::vector<std::pair<std::string, std::string>> text;
+  for (const auto& [key, value] : metadata.items()) text.push_back({key, value.get<std::string>()});
+  return text;
+}
 
 std::filesystem::path exrVolumeDirectory(const std::string& path) {
   std::filesystem::path dir = path;

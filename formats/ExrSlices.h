@@ -2,6 +2,8 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "basis/Basis.h"
 #include "formats/BrickAtlas.h"
@@ -47,6 +49,9 @@ void writeSliceSet(const Volume& volume, const Basis& basis, const std::string& 
 std::filesystem::path exrVolumeDirectory(const std::string& path);
 // The manifest of the EXR volume at `path` (a directory or its manifest.json), parsed only.
 nlohmann::json readExrManifest(const std::string& path);
+// A manifest's "metadata" object as the text entries every format's header holds
+// (nlohmann::json::type_error for a value that is not a string).
+std::vector<std::pair<std::string, std::string>> exrMetadataText(const nlohmann::json& metadata);
 // Reads the slice set of one level in `directory`, whose parsed manifest.json is `manifest`: its
 // bricks as the manifest's atlas lists them.
 Volume readAtlasSliceSet(const std::string& directory, const nlohmann::json& manifest);

@@ -92,8 +92,8 @@ openvdb::MetaMap fileMetadata(const Volume& v, const Basis& basis, bool hasProbe
 std::string failureReason() { return errno != 0 ? std::strerror(errno) : "the output stream failed"; }
 
 // OpenVDB's public writer takes every grid at once, so all of a volume's grids (84 for sh-l2
-// with a distance map, 102 with the sky's parts) would be alive together, each with its own 32³ and 16³ internal nodes.
-// Writing sixteen grids at a time bounds that; Archive's protected members write the same header
+// with a distance map, 102 with the sky's parts) would be alive together, each with its own 32³
+// and 16³ internal nodes. Writing sixteen grids at a time bounds that; Archive's protected members write the same header
 // and grid records as File::write, given what holds for our grids: none is null, their names are
 // unique and not empty (so File::write would rename none), and none shares its tree with another
 // (so none would be written as an instance).

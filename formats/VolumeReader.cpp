@@ -56,12 +56,14 @@ DistanceGrids distanceGridsOf(const std::string& path) {
   const std::string format = volumeFormatOf(path);
   if (format == "vdb") return distanceGridsInFile(vdbMetadataText(path));
   if (format != "exr") return DistanceGrids::ScalarPerValue;  // an engine's export holds no map
-  std::vector<std::pair<std::string, std::string>> text;
+  // A directory of levels has no "metadata" of its own, and its levels hold no map.
   const nlohmann::json manifest = readExrManifest(path);
-  if (const auto metadata = manifest.find("metadata"); metadata != manifest.end() && metadata->is_object())
-    for (const auto& [key, value] : metadata->items())
-      if (value.is_string()) text.push_back({key, value.get<std::string>()});
-  return distanceGridsInFile(text);
+  if (!manifest.contains("metadata")) return DistanceGrids::ScalarPerValue;
+  try {
+    return distanceGridsInFile(exrMetadataText(manifest.at("metadata")));
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(fmt::format("{}: \"metadata\": {}", path, oneLine(e.what())));
+  }
 }
 
 AdaptiveVolume readLevels(const std::string& path) {
