@@ -176,11 +176,12 @@ nlohmann::json gridRanges(const AdaptiveVolume& volume, const Basis& basis, Dist
     for (const Volume& level : volume.levels)
       for (std::int64_t row = 0; row < level.rows.count(level.grid); ++row) {
         const std::int64_t probe = level.rows.probeAt(level.grid, row);
-        for (int c = 0; c < grid.components; ++c) {
-          const float value = gridValue(level, grid, c, probe);
-          lo = std::min(lo, value);
-          hi = std::max(hi, value);
-        }
+        for (const VolumeGrid& held : perProbeGridsOf(grid, v.distanceMap))
+          for (int c = 0; c < held.components; ++c) {
+            const float value = gridValue(level, held, c, probe);
+            lo = std::min(lo, value);
+            hi = std::max(hi, value);
+          }
       }
     grids.push_back({{"name", grid.name}, {"components", grid.components}, {"min", lo}, {"max", hi}});
   }

@@ -705,9 +705,11 @@ inline void blendProbes(const float* const probes[8], const double weight[8], in
 // ---------------------------------------------------------------------------------------------
 // Leak-aware weights (docs/LEAKS.md): a volume with "baker.distance_map" holds per probe an N × N
 // octahedral map of the mean and mean squared distance to the first surface, in units of the
-// map's cap (value 2t and 2t + 1: R and G of grid distance_map_NNN, texel t = NNN = i + N·j; in
-// files of format 3, grids distance_moments_NNN). Multiply each
-// corner's trilinear weight by leakWeight() and divide by the sum of the products.
+// map's cap (value 2t and 2t + 1 of texel t = i + N·j: in a .vdb the R and G of the atlas grid
+// distance_map at voxel (x·N + i, y·N + j, z) of probe (x, y, z); in EXR slices and .vdb files of
+// format 6 the R and G of grid distance_map_NNN, t = NNN; in files of format 3, grids
+// distance_moments_NNN). Multiply each corner's trilinear weight by leakWeight() and divide by the
+// sum of the products.
 
 struct DistanceMap {
   int size = 8;      // "size"

@@ -62,7 +62,7 @@ nlohmann::json manifestOf(const Volume& v, const Basis& basis, ExrPrecision prec
   for (int k = 0; k < layout.texels().z(); ++k) slices.push_back(sliceName(k));
   const ProbeGrid& g = v.grid;
   return {{"format", kFormatName},
-          {"format_version", formatVersionOf(v)},
+          {"format_version", formatVersionOf(v, VolumeFile::ExrSlices)},
           {"basis", basis.name()},
           {"dims", {g.dims.x(), g.dims.y(), g.dims.z()}},
           {"origin", {g.origin.x(), g.origin.y(), g.origin.z()}},
@@ -117,7 +117,7 @@ bool isExrSliceDirectory(const std::string& path) { return directoryHolds(path, 
 void writeSliceSet(const Volume& volume, const Basis& basis, const std::string& directory, ExrPrecision precision,
                    const BrickAtlas* atlas, const nlohmann::json& extra) {
   requireFiniteVolume(volume);
-  const std::vector<VolumeGrid> grids = volumeGrids(basis, volume);
+  const std::vector<VolumeGrid> grids = volumeGrids(basis, volume, VolumeFile::ExrSlices);
   const double scale = coefficientScale(volume, precision);
   const PixelType storage = precision == ExrPrecision::Half ? PixelType::Half : PixelType::Float;
   // An atlas holds exactly its bricks; the grid's own layout the bricks a file keeps.
@@ -330,9 +330,13 @@ Volume readSliceSet(const std::filesystem::path& dir, const nlohmann::json& m, c
   Volume volume = manifest.header.emptyVolume(manifestPath, parts);
 
   const std::unique_ptr<Basis> basis = makeBasis(volume.basisName);
+  const DistanceGrids distanceGrids = distanceGridsInFile(manifest.header.text);
+  if (distanceGrids == DistanceGrids::Atlas)
+    throw InputError(fmt::format("{}: {} has \"texel_grids\": \"atlas\", which only a .vdb holds: EXR slices hold "
+                                 "\"rgb\"", manifestPath, kDistanceMapKey));
   const std::vector<VolumeGrid> grids =
       volumeGrids(*basis, volume.visibilityPerProbe, manifest.header.hasProbeStates, volume.distanceMap,
-                  distanceGridsInFile(manifest.header.text), volume.keepsSkyDirect, volume.keepsSkyBounced);
+                  distanceGrids, volume.keepsSkyDirect, volume.keepsSkyBounced);
   std::vector<float> pixels;
   for (int k = 0; k < depth; ++k) readSlice(dir, manifest, k, manifestPath, grids, pixels, volume);
   requireFiniteValues(volume, path);

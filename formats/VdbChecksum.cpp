@@ -13,6 +13,7 @@
 
 #include "common/Error.h"
 #include "common/Fnv1a64.h"
+#include "common/Xxh64.h"
 #include "formats/ReadWithZeroedField.h"
 
 namespace baker {
@@ -25,11 +26,11 @@ void appendLength(std::string& bytes, std::uint32_t length) {
   for (int b = 0; b < 4; ++b) bytes.push_back(char((length >> (8 * b)) & 0xff));
 }
 
-// How OpenVDB serialises one string metadata entry, up to its value: the name, the type name
-// and the value's size, each length-prefixed.
-std::string entryPrefix() {
+// How OpenVDB serialises one string metadata entry under `key`, up to its value: the name, the
+// type name and the value's size, each length-prefixed.
+std::string entryPrefix(const std::string& key) {
   std::string bytes;
-  const std::string key = kVdbChecksumKey, type = "string";
+  const std::string type = "string";
   appendLength(bytes, std::uint32_t(key.size()));
   bytes += key;
   appendLength(bytes, std::uint32_t(type.size()));
@@ -38,16 +39,20 @@ std::string entryPrefix() {
   return bytes;
 }
 
-// Offsets of the checksum digits (just after each occurrence of the entry's prefix), read in
-// pieces that overlap by the prefix's length so that no occurrence is split.
-std::vector<std::uint64_t> digitOffsets(std::ifstream& in) {
-  const std::string prefix = entryPrefix();
+// Offsets of the digits of the entry under `key` (just after each occurrence of its prefix) in the
+// first `limit` bytes, read in pieces that overlap by the prefix's length so that no occurrence is
+// split; at most two are listed.
+std::vector<std::uint64_t> digitOffsets(std::ifstream& in, const std::string& key, std::uint64_t limit) {
+  const std::string prefix = entryPrefix(key);
   std::vector<std::uint64_t> offsets;
   std::vector<char> window(1 << 16);
   std::size_t kept = 0;
   std::uint64_t windowStart = 0;
-  while (in) {
-    in.read(window.data() + kept, std::streamsize(window.size() - kept));
+  in.clear();
+  in.seekg(0);
+  while (in && windowStart + kept < limit) {
+    const std::uint64_t wanted = std::min<std::uint64_t>(window.size() - kept, limit - windowStart - kept);
+    in.read(window.data() + kept, std::streamsize(wanted));
     const std::size_t filled = kept + std::size_t(in.gcount());
     for (auto it = window.begin(); it != window.begin() + std::ptrdiff_t(filled);) {
       it = std::search(it, window.begin() + std::ptrdiff_t(filled), prefix.begin(), prefix.end());
@@ -57,6 +62,7 @@ std::vector<std::uint64_t> digitOffsets(std::ifstream& in) {
       if (offsets.size() > 1) return offsets;
       ++it;
     }
+    if (filled == kept) break;
     kept = std::min(filled, prefix.size() - 1);
     std::memmove(window.data(), window.data() + filled - kept, kept);
     windowStart += filled - kept;
@@ -64,9 +70,10 @@ std::vector<std::uint64_t> digitOffsets(std::ifstream& in) {
   return offsets;
 }
 
-// The hash of the file's bytes with the kDigits bytes at `digits` read as '0'.
+// The hash `Hash` of the file's bytes with the kDigits bytes at `digits` read as '0'.
+template <typename Hash>
 std::uint64_t hashWithPlaceholder(std::ifstream& in, std::uint64_t digits) {
-  Fnv1a64 hash;
+  Hash hash;
   readWithZeroedField(in, digits, kDigits, [&](const char* bytes, std::size_t count) { hash.add(bytes, count); });
   return hash.value();
 }
@@ -87,13 +94,13 @@ std::optional<std::uint64_t> readDigits(std::ifstream& in, std::uint64_t digits)
 
 }  // namespace
 
-void sealVdbChecksum(const std::string& path) {
+void sealVdbChecksum(const std::string& path, std::uint64_t headerBytes) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw std::runtime_error(fmt::format("{}: cannot reopen the written file to seal it", path));
-  const std::vector<std::uint64_t> offsets = digitOffsets(in);
+  const std::vector<std::uint64_t> offsets = digitOffsets(in, kVdbChecksumKey, headerBytes);
   if (offsets.size() != 1 || readDigits(in, offsets[0]) != std::uint64_t(0))
-    throw std::runtime_error(fmt::format("{}: the checksum placeholder is not in the written file exactly once", path));
-  const std::string digits = fmt::format("{:016x}", hashWithPlaceholder(in, offsets[0]));
+    throw std::runtime_error(fmt::format("{}: the checksum placeholder is not in the written file's metadata exactly once", path));
+  const std::string digits = fmt::format("{:016x}", hashWithPlaceholder<Xxh64>(in, offsets[0]));
   in.close();
   std::fstream out(path, std::ios::binary | std::ios::in | std::ios::out);
   out.seekp(std::streamoff(offsets[0]));
@@ -105,17 +112,24 @@ void sealVdbChecksum(const std::string& path) {
 void requireVdbChecksum(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(fmt::format("{}: cannot read the file", path));
-  const std::vector<std::uint64_t> offsets = digitOffsets(in);
+  constexpr std::uint64_t kWholeFile = ~std::uint64_t(0);
+  std::string key = kVdbChecksumKey;
+  std::vector<std::uint64_t> offsets = digitOffsets(in, key, kWholeFile);
+  if (offsets.empty()) {
+    key = kVdbLegacyChecksumKey;
+    offsets = digitOffsets(in, key, kWholeFile);
+  }
   if (offsets.empty())
     throw InputError(fmt::format("{}: not a readable OpenVDB volume: it has no '{}' metadata (not written by "
                                  "baker, or by a version before volume format 3: bake it again)",
                                  path, kVdbChecksumKey));
   if (offsets.size() > 1)
-    throw InputError(fmt::format("{}: not a readable OpenVDB volume: '{}' appears more than once", path, kVdbChecksumKey));
+    throw InputError(fmt::format("{}: not a readable OpenVDB volume: '{}' appears more than once", path, key));
   // Compared as numbers, never as text: a fuzzer that sees the text it is compared with learns
   // to write it into the file (libFuzzer does this with memcmp arguments).
   const std::optional<std::uint64_t> stored = readDigits(in, offsets[0]);
-  const std::uint64_t actual = hashWithPlaceholder(in, offsets[0]);
+  const std::uint64_t actual = key == kVdbChecksumKey ? hashWithPlaceholder<Xxh64>(in, offsets[0])
+                                                      : hashWithPlaceholder<Fnv1a64>(in, offsets[0]);
   if (stored != actual)
     throw InputError(fmt::format("{}: not a readable OpenVDB volume: its bytes do not match its checksum ({} "
                                  "stored, {:016x} computed): the file is corrupted, truncated or was edited",

@@ -84,6 +84,30 @@ void readVoxels(openvdb::io::File& file, const std::string& name, const ProbeGri
   }
 }
 
+// The distance atlas's voxels into the maps of the probes they belong to, refusing a voxel
+// outside the atlas of the grid's probes or of a probe the volume does not hold.
+void readDistanceAtlas(openvdb::io::File& file, const std::string& name, const std::string& path, Volume& volume) {
+  if (!file.hasGrid(name)) throw InputError(fmt::format("{}: grid '{}' is missing", path, name));
+  auto grid = openvdb::gridPtrCast<openvdb::Vec3SGrid>(file.readGrid(name));
+  if (!grid) throw InputError(fmt::format("{}: grid '{}' has the wrong value type", path, name));
+  const ProbeGrid& g = volume.grid;
+  const int size = volume.distanceMap.size;
+  const std::vector<VolumeGrid> texelGrids = perProbeGridsOf({name, VolumeGrid::Kind::DistanceAtlas, 3}, volume.distanceMap);
+  for (auto it = grid->cbeginValueOn(); it; ++it) {
+    const openvdb::Coord c = it.getCoord();
+    Eigen::Vector3i probe;
+    int t = 0;
+    if (!probeOfAtlasVoxel({c.x(), c.y(), c.z()}, size, g.dims, probe, t))
+      throw InputError(fmt::format("{}: grid '{}' has a voxel at ({}, {}, {}), outside the atlas of {} × {} × {} probes' "
+                                   "maps of {} × {} texels", path, name, c.x(), c.y(), c.z(), g.dims.x(), g.dims.y(),
+                                   g.dims.z(), size, size));
+    const std::int64_t p = g.linearIndex(probe.x(), probe.y(), probe.z());
+    for (int component = 0; component < 3; ++component)
+      if (!setGridValue(volume, texelGrids[std::size_t(t)], component, p, (*it)[component]))
+        throw voxelNotHeld(path, name, volume, p);
+  }
+}
+
 // The grids of one level (named `prefix` + the layout's name) into `volume`, sized already.
 void readLevelGrids(openvdb::io::File& file, const std::string& path, const std::string& prefix,
                     const VolumeHeader& header, Volume& volume) {
@@ -93,7 +117,9 @@ void readLevelGrids(openvdb::io::File& file, const std::string& path, const std:
                                             volume.distanceMap, distanceGridsInFile(header.text),
                                             volume.keepsSkyDirect, volume.keepsSkyBounced)) {
     const std::string name = prefix + spec.name;
-    if (spec.kind == VolumeGrid::Kind::ProbeState)
+    if (spec.kind == VolumeGrid::Kind::DistanceAtlas)
+      readDistanceAtlas(file, name, path, volume);
+    else if (spec.kind == VolumeGrid::Kind::ProbeState)
       readVoxels<openvdb::Int32Grid>(file, name, g, path, [&](std::int64_t p, int state) {
         if (state < 0 || state >= kProbeStateCount)
           throw InputError(fmt::format("{}: grid '{}' holds {}; states are 0, 1, 2 or 3", path, name, state));

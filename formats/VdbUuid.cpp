@@ -6,6 +6,7 @@
 #include <fstream>
 #include <stdexcept>
 
+#include "common/Xxh64.h"
 #include "formats/ReadWithZeroedField.h"
 
 namespace baker {
@@ -35,21 +36,17 @@ void deriveVdbUuid(const std::string& path) {
   if (std::size_t(in.gcount()) != sizeof header || !looksLikeUuid(header + kUuidOffset))
     throw std::runtime_error(fmt::format("{}: the written file has no UUID where OpenVDB writes one", path));
 
-  // Two FNV-1a hashes with different offset bases: 128 bits, of which the UUID keeps 122.
-  std::uint64_t first = 0xcbf29ce484222325ull, second = 0x84222325cbf29ce4ull;
-  constexpr std::uint64_t kPrime = 0x100000001b3ull;
+  // Two XXH64 hashes with different seeds: 128 bits, of which the UUID keeps 122.
+  Xxh64 first(1), second(2);
   readWithZeroedField(in, kUuidOffset, kUuidLength, [&](const char* bytes, std::size_t count) {
-    for (std::size_t i = 0; i < count; ++i) {
-      const unsigned char byte = static_cast<unsigned char>(bytes[i]);
-      first = (first ^ byte) * kPrime;
-      second = (second ^ byte) * kPrime;
-    }
+    first.add(bytes, count);
+    second.add(bytes, count);
   });
   in.close();
 
-  std::string hex = fmt::format("{:016x}{:016x}", first, second);
+  std::string hex = fmt::format("{:016x}{:016x}", first.value(), second.value());
   hex[12] = '8';                                           // version 8: custom
-  hex[16] = "89ab"[(second >> 62) & 3];                    // variant 10xx
+  hex[16] = "89ab"[(second.value() >> 62) & 3];            // variant 10xx
   const std::string uuid = fmt::format("{}-{}-{}-{}-{}", hex.substr(0, 8), hex.substr(8, 4), hex.substr(12, 4),
                                        hex.substr(16, 4), hex.substr(20, 12));
   std::fstream out(path, std::ios::binary | std::ios::in | std::ios::out);

@@ -37,18 +37,22 @@ int knownFormatVersion(const std::vector<std::pair<std::string, std::string>>& t
   return version;
 }
 
-// A map held in RGB texel grids came with format 6, and format 6 holds a map with the sky's shares
-// no other way: a file that says otherwise has lost or gained the key.
+// A map held in RGB texel grids came with format 6, as an atlas with format 7, and those formats
+// hold a map with the sky's shares no other way: a file that says otherwise has lost or gained the
+// key.
 void requireDistanceGridsOfVersion(const std::vector<std::pair<std::string, std::string>>& text, int version,
                                    const Volume& volume, const std::string& path) {
-  const bool rgb = distanceGridsInFile(text) == DistanceGrids::RgbPerTexel;
-  if (rgb && version < kTexelGridsFormatVersion)
-    throw InputError(fmt::format("{}: {} has \"texel_grids\" in a file of format {}; texel grids came with format {}",
-                                 path, kDistanceMapKey, version, kTexelGridsFormatVersion));
-  if (!rgb && version >= kTexelGridsFormatVersion && volume.distanceMomentsPerProbe() > 0 &&
-      volume.distanceMap.skyVisibility)
-    throw InputError(fmt::format("{}: {} has no \"texel_grids\": \"rgb\", which a file of format {} holding the sky's "
-                                 "shares has", path, kDistanceMapKey, version));
+  const DistanceGrids form = distanceGridsInFile(text);
+  const int since = form == DistanceGrids::Atlas         ? kAtlasFormatVersion
+                    : form == DistanceGrids::RgbPerTexel ? kTexelGridsFormatVersion
+                                                         : 0;
+  if (version < since)
+    throw InputError(fmt::format("{}: {} has \"texel_grids\": \"{}\" in a file of format {}; it came with format {}",
+                                 path, kDistanceMapKey, form == DistanceGrids::Atlas ? "atlas" : "rgb", version, since));
+  if (form == DistanceGrids::ScalarPerValue && version >= kTexelGridsFormatVersion &&
+      volume.distanceMomentsPerProbe() > 0 && volume.distanceMap.skyVisibility)
+    throw InputError(fmt::format("{}: {} has no \"texel_grids\", which a file of format {} holding the sky's shares "
+                                 "has", path, kDistanceMapKey, version));
 }
 
 }  // namespace

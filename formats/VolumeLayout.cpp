@@ -29,8 +29,29 @@ void addCoefficientGrids(const Basis& basis, VolumeGrid::Kind kind, const std::s
 
 }  // namespace
 
-DistanceGrids distanceGridsWritten(const DistanceMapLayout& layout) {
-  return layout.skyVisibility ? DistanceGrids::RgbPerTexel : DistanceGrids::ScalarPerValue;
+DistanceGrids distanceGridsWritten(const DistanceMapLayout& layout, VolumeFile file) {
+  if (!layout.skyVisibility) return DistanceGrids::ScalarPerValue;
+  return file == VolumeFile::OpenVdb ? DistanceGrids::Atlas : DistanceGrids::RgbPerTexel;
+}
+
+VolumeGrid distanceTexelGrid(int t, int texels) {
+  return {fmt::format("distance_map_{:03}", t), VolumeGrid::Kind::DistanceMap, 3, {2 * t, 2 * t + 1, 2 * texels + t}};
+}
+
+std::vector<VolumeGrid> perProbeGridsOf(const VolumeGrid& grid, const DistanceMapLayout& map) {
+  if (grid.kind != VolumeGrid::Kind::DistanceAtlas) return {grid};
+  std::vector<VolumeGrid> texelGrids;
+  for (int t = 0; t < map.texels(); ++t) texelGrids.push_back(distanceTexelGrid(t, map.texels()));
+  return texelGrids;
+}
+
+bool probeOfAtlasVoxel(const AtlasVoxel& voxel, int size, const Eigen::Vector3i& dims, Eigen::Vector3i& probe, int& t) {
+  if (voxel.x < 0 || voxel.y < 0 || voxel.z < 0 || voxel.x >= std::int64_t(dims.x()) * size ||
+      voxel.y >= std::int64_t(dims.y()) * size || voxel.z >= dims.z())
+    return false;
+  probe = Eigen::Vector3i(int(voxel.x / size), int(voxel.y / size), int(voxel.z));
+  t = int(voxel.x % size) + size * int(voxel.y % size);
+  return true;
 }
 
 std::vector<VolumeGrid> volumeGrids(const Basis& basis, int visibilityPerProbe, bool hasProbeStates,
@@ -43,9 +64,10 @@ std::vector<VolumeGrid> volumeGrids(const Basis& basis, int visibilityPerProbe, 
   for (int f = 0; f < visibilityPerProbe; ++f)
     grids.push_back({fmt::format("visibility_{:02}", f), VolumeGrid::Kind::Visibility, 1, {f, 0, 0}});
   const int texels = distanceMap.size > 0 ? distanceMap.texels() : 0, moments = 2 * texels;
-  if (texels > 0 && distanceMap.skyVisibility && distanceGrids == DistanceGrids::RgbPerTexel) {
-    for (int t = 0; t < texels; ++t)
-      grids.push_back({fmt::format("distance_map_{:03}", t), VolumeGrid::Kind::DistanceMap, 3, {2 * t, 2 * t + 1, moments + t}});
+  if (texels > 0 && distanceMap.skyVisibility && distanceGrids == DistanceGrids::Atlas) {
+    grids.push_back({"distance_map", VolumeGrid::Kind::DistanceAtlas, 3, {0, 0, 0}});
+  } else if (texels > 0 && distanceMap.skyVisibility && distanceGrids == DistanceGrids::RgbPerTexel) {
+    for (int t = 0; t < texels; ++t) grids.push_back(distanceTexelGrid(t, texels));
   } else {
     for (int f = 0; f < moments; ++f)
       grids.push_back({fmt::format("distance_moments_{:03}", f), VolumeGrid::Kind::DistanceMoments, 1, {f, 0, 0}});
@@ -60,9 +82,9 @@ std::vector<VolumeGrid> volumeGrids(const Basis& basis, int visibilityPerProbe, 
   return grids;
 }
 
-std::vector<VolumeGrid> volumeGrids(const Basis& basis, const Volume& volume) {
+std::vector<VolumeGrid> volumeGrids(const Basis& basis, const Volume& volume, VolumeFile file) {
   return volumeGrids(basis, volume.visibilityPerProbe, volume.hasProbeStates(), volume.distanceMap,
-                     distanceGridsWritten(volume.distanceMap),
+                     distanceGridsWritten(volume.distanceMap, file),
                      volume.keepsSkyDirect, volume.keepsSkyBounced);
 }
 
@@ -95,6 +117,7 @@ FloatColumn floatColumn(const Volume& v, const VolumeGrid& grid, int component) 
     case VolumeGrid::Kind::DistanceMap:
     case VolumeGrid::Kind::DistanceMoments:
     case VolumeGrid::Kind::SkyVisibilityMap: return column(v.distanceMoments, v.distanceMomentsPerProbe());
+    case VolumeGrid::Kind::DistanceAtlas:
     case VolumeGrid::Kind::ProbeState:
     case VolumeGrid::Kind::ProbeOffset: break;
   }
@@ -116,6 +139,8 @@ bool setGridValue(Volume& v, const VolumeGrid& grid, int component, std::int64_t
       break;
     case VolumeGrid::Kind::ProbeState: v.states[row] = ProbeState(std::uint8_t(value)); break;
     case VolumeGrid::Kind::ProbeOffset: v.offsets[row][component] = value; break;
+    case VolumeGrid::Kind::DistanceAtlas:
+      throw std::logic_error("the distance atlas holds many values a probe: it is set texel by texel");
   }
   return true;
 }

@@ -26,6 +26,7 @@ const char* kindName(VolumeGrid::Kind kind) {
     case VolumeGrid::Kind::SkyDirect: return "sky_direct_coefficients";
     case VolumeGrid::Kind::SkyBounced: return "sky_bounced_coefficients";
     case VolumeGrid::Kind::Visibility: return "sky_visibility_coefficients";
+    case VolumeGrid::Kind::DistanceAtlas: return "distance_atlas";
     case VolumeGrid::Kind::DistanceMap: return "distance_map";
     case VolumeGrid::Kind::DistanceMoments: return "distance_moments";
     case VolumeGrid::Kind::SkyVisibilityMap: return "sky_visibility_map";
@@ -37,16 +38,12 @@ const char* kindName(VolumeGrid::Kind kind) {
 
 }  // namespace
 
-std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume& volume, const Basis& basis) {
-  return describingMetadata(volume, basis, volume.hasProbeStates());
-}
-
 std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume& volume, const Basis& basis,
-                                                                    bool hasProbeStates) {
+                                                                    bool hasProbeStates, VolumeFile file) {
+  const DistanceGrids distanceGrids = distanceGridsWritten(volume.distanceMap, file);
   nlohmann::json layout = nlohmann::json::array();
-  for (const VolumeGrid& g :
-       volumeGrids(basis, volume.visibilityPerProbe, hasProbeStates, volume.distanceMap,
-                   distanceGridsWritten(volume.distanceMap), volume.keepsSkyDirect, volume.keepsSkyBounced)) {
+  for (const VolumeGrid& g : volumeGrids(basis, volume.visibilityPerProbe, hasProbeStates, volume.distanceMap,
+                                         distanceGrids, volume.keepsSkyDirect, volume.keepsSkyBounced)) {
     nlohmann::json entry = {{"name", g.name}, {"kind", kindName(g.kind)}, {"components", g.components}};
     if (g.kind == VolumeGrid::Kind::Coefficients || g.kind == VolumeGrid::Kind::SkyDirect ||
         g.kind == VolumeGrid::Kind::SkyBounced || g.kind == VolumeGrid::Kind::Visibility ||
@@ -59,7 +56,7 @@ std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume
   const bool radiance = signal == StoredSignal::Radiance;
   std::vector<std::pair<std::string, std::string>> meta = {
       {"baker.version", BAKER_VERSION},
-      {"baker.format_version", std::to_string(formatVersionOf(volume))},
+      {"baker.format_version", std::to_string(formatVersionOf(volume, file))},
       {"baker.basis", basis.name()},
       {"baker.quantity", storedSignalName(signal)},
       {"baker.units", radiance ? "coefficients of the incoming radiance L(w) in the scene's radiance units; irradiance "
@@ -78,7 +75,7 @@ std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume
   // How glossy specular is read from radiance, for decoders to read it the same way.
   if (radiance) meta.push_back({"baker.specular", specularBlendOf(basis)->describe().dump()});
   if (volume.distanceMomentsPerProbe() > 0)
-    meta.push_back({kDistanceMapKey, distanceMapDescription(volume.distanceMap).dump()});
+    meta.push_back({kDistanceMapKey, distanceMapDescription(volume.distanceMap, distanceGrids).dump()});
   if (volume.sky) meta.push_back({kSkyKey, skyMetadata(*volume.sky).dump()});
   if (volume.keepsSkyDirect)
     meta.push_back({kSkyDirectKey,
@@ -105,7 +102,8 @@ std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume
 
 nlohmann::json describingMetadataJson(const Volume& volume, const Basis& basis) {
   nlohmann::json metadata = nlohmann::json::object();
-  for (const auto& [key, value] : describingMetadata(volume, basis)) metadata[key] = value;
+  for (const auto& [key, value] : describingMetadata(volume, basis, volume.hasProbeStates(), VolumeFile::ExrSlices))
+    metadata[key] = value;
   return metadata;
 }
 
@@ -142,13 +140,17 @@ void readShard(const std::vector<std::pair<std::string, std::string>>& metadata,
                                  kMaxShards));
 }
 
-int formatVersionOf(const Volume& volume) {
-  return volume.distanceMomentsPerProbe() > 0 && distanceGridsWritten(volume.distanceMap) == DistanceGrids::RgbPerTexel
-             ? kTexelGridsFormatVersion
-             : kVolumeFormatVersion;
+int formatVersionOf(const Volume& volume, VolumeFile file) {
+  if (volume.distanceMomentsPerProbe() == 0) return kVolumeFormatVersion;
+  switch (distanceGridsWritten(volume.distanceMap, file)) {
+    case DistanceGrids::Atlas: return kAtlasFormatVersion;
+    case DistanceGrids::RgbPerTexel: return kTexelGridsFormatVersion;
+    case DistanceGrids::ScalarPerValue: break;
+  }
+  return kVolumeFormatVersion;
 }
 
-nlohmann::json distanceMapDescription(const DistanceMapLayout& layout) {
+nlohmann::json distanceMapDescription(const DistanceMapLayout& layout, DistanceGrids form) {
   nlohmann::json map = {{"size", layout.size},
                         {"cap", layout.cap},
                         {"sharpness", layout.sharpness()},
@@ -156,13 +158,20 @@ nlohmann::json distanceMapDescription(const DistanceMapLayout& layout) {
                         {"encoding", kOctahedralEncoding},
                         {"sky_visibility", layout.skyVisibility},
                         {"invalid_probes", "probes inside geometry hold zeros: leak-aware readers turn them away"}};
-  if (distanceGridsWritten(layout) == DistanceGrids::RgbPerTexel) {
+  // What a texel's R, G and B hold, in either RGB form.
+  const std::string texel =
+      ": R the mean distance to the first surface, G the mean squared distance, in units of cap and cap^2 (rays that "
+      "escape, and distances beyond the cap, count as the cap), B the share of the rays that escaped to the sky, in "
+      "[0, 1]; each ray w weighs max(0, c.w)^sharpness in the texel of direction c";
+  if (form == DistanceGrids::Atlas) {
+    map["texel_grids"] = "atlas";
+    map["values"] = "distance_map holds texel t = u + size * v of probe (i, j, k) at voxel (i * size + u, j * size + v, "
+                    "k), its transform's voxels size times smaller than the probe spacing in x and y" + texel;
+    return map;
+  }
+  if (form == DistanceGrids::RgbPerTexel) {
     map["texel_grids"] = "rgb";
-    map["values"] =
-        "distance_map_NNN holds texel t = NNN = i + size * j: R the mean distance to the first surface, G the mean "
-        "squared distance, in units of cap and cap^2 (rays that escape, and distances beyond the cap, count as the "
-        "cap), B the share of the rays that escaped to the sky, in [0, 1]; each ray w weighs max(0, c.w)^sharpness in "
-        "the texel of direction c";
+    map["values"] = "distance_map_NNN holds texel t = NNN = i + size * j" + texel;
     return map;
   }
   map["values"] =
@@ -196,9 +205,10 @@ void readDistanceMap(const std::vector<std::pair<std::string, std::string>>& met
     layout.size = map.at("size").get<int>();
     layout.cap = map.at("cap").get<double>();
     layout.skyVisibility = map.value("sky_visibility", false);
-    if (map.contains("texel_grids") && !(map["texel_grids"] == "rgb" && layout.skyVisibility))
-      throw InputError(fmt::format("{}: {} \"texel_grids\" is {}; this reader knows \"rgb\", with \"sky_visibility\" "
-                                   "true", path, kDistanceMapKey, map["texel_grids"].dump()));
+    if (map.contains("texel_grids") &&
+        !((map["texel_grids"] == "rgb" || map["texel_grids"] == "atlas") && layout.skyVisibility))
+      throw InputError(fmt::format("{}: {} \"texel_grids\" is {}; this reader knows \"rgb\" and \"atlas\", with "
+                                   "\"sky_visibility\" true", path, kDistanceMapKey, map["texel_grids"].dump()));
   } catch (const nlohmann::json::exception& e) {
     throw InputError(fmt::format("{}: {} is not a distance map's description: {}", path, kDistanceMapKey, oneLine(e.what())));
   }
@@ -214,9 +224,10 @@ void readDistanceMap(const std::vector<std::pair<std::string, std::string>>& met
 DistanceGrids distanceGridsInFile(const std::vector<std::pair<std::string, std::string>>& metadata) {
   const std::string* value = metadataValue(metadata, kDistanceMapKey);
   if (!value) return DistanceGrids::ScalarPerValue;
-  // readDistanceMap refuses any value but "rgb".
+  // readDistanceMap refuses any value but "rgb" and "atlas".
   const nlohmann::json map = nlohmann::json::parse(*value, nullptr, /*allow_exceptions=*/false);
-  return map.is_object() && map.contains("texel_grids") ? DistanceGrids::RgbPerTexel : DistanceGrids::ScalarPerValue;
+  if (!map.is_object() || !map.contains("texel_grids")) return DistanceGrids::ScalarPerValue;
+  return map["texel_grids"] == "atlas" ? DistanceGrids::Atlas : DistanceGrids::RgbPerTexel;
 }
 
 nlohmann::json skyMetadata(const SkyRadiance& sky) {

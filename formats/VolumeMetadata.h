@@ -14,13 +14,14 @@ namespace baker {
 // values mean and in which units, the basis, its colour space, the grid layout and the data to
 // reconstruct the basis without this code (JSON), the tool version, and the bake settings under
 // "baker.setting.*". The grid placement and per-probe counts are stored natively by each format.
-std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume& volume, const Basis& basis);
-// The same, with the layout listing the probe grids when `hasProbeStates` (an adaptive volume's
-// file has them though its coarsest level, a shard's share, may hold no probe).
+// In a file of kind `file` (the distance map's grids differ), with the layout listing the probe
+// grids when `hasProbeStates` (an adaptive volume's file has them though its coarsest level, a
+// shard's share, may hold no probe).
 std::vector<std::pair<std::string, std::string>> describingMetadata(const Volume& volume, const Basis& basis,
-                                                                    bool hasProbeStates);
+                                                                    bool hasProbeStates, VolumeFile file);
 
-// The same as one JSON object of strings, for formats that keep their metadata in JSON.
+// The same as one JSON object of strings, for formats that keep their metadata in JSON (EXR
+// slices and what is made from them: engines' exports, the viewer's page).
 nlohmann::json describingMetadataJson(const Volume& volume, const Basis& basis);
 
 // The metadata of an engine's export of `source`: what it stores, in the engine's basis `stored`
@@ -42,20 +43,25 @@ constexpr int kFirstLevelsFormatVersion = 4;
 // 6: the distance map is held as one RGB grid per texel (DistanceGrids::RgbPerTexel); only such
 // files carry it, so that a reader of version 5 refuses them rather than missing the map's grids.
 constexpr int kTexelGridsFormatVersion = 6;
-constexpr int kNewestFormatVersion = kTexelGridsFormatVersion;
-// The version of a uniform volume's file: 6 when its distance map is written RGB per texel, else 3.
-int formatVersionOf(const Volume& volume);
+// 7: a .vdb holds the distance map as one atlas grid (DistanceGrids::Atlas); likewise.
+constexpr int kAtlasFormatVersion = 7;
+constexpr int kNewestFormatVersion = kAtlasFormatVersion;
+// The version of a uniform volume's file of kind `file`: 7 when its distance map is written as an
+// atlas, 6 when RGB per texel, else 3.
+int formatVersionOf(const Volume& volume, VolumeFile file);
 
 // A volume with distance moments describes its map under this key (JSON): "size", "cap" (world
 // units), "sharpness", "values_per_probe", and in words the encoding, the texel order and the units.
 constexpr const char* kDistanceMapKey = "baker.distance_map";
-nlohmann::json distanceMapDescription(const DistanceMapLayout& layout);
+// `form`: how the file holds it.
+nlohmann::json distanceMapDescription(const DistanceMapLayout& layout, DistanceGrids form);
 // Recovers volume.distanceMap from that key (none without it); InputError naming `path` and the
 // key when its size or cap is out of range.
 void readDistanceMap(const std::vector<std::pair<std::string, std::string>>& metadata, Volume& volume,
                      const std::string& path);
-// How the file of `metadata` holds its distance map: RgbPerTexel when the key has "texel_grids"
-// (which readDistanceMap has checked is "rgb"), ScalarPerValue otherwise (files before format 6).
+// How the file of `metadata` holds its distance map: Atlas or RgbPerTexel as the key's
+// "texel_grids" says ("atlas" or "rgb", which readDistanceMap has checked), ScalarPerValue without
+// it (files before format 6).
 DistanceGrids distanceGridsInFile(const std::vector<std::pair<std::string, std::string>>& metadata);
 
 // The sky a volume's light came from (volume/SkyRadiance.h), under this key (JSON): "width",

@@ -482,9 +482,10 @@ BAKER_SPECULAR(AdHemi9, 7, bakerRadianceAdHemi9)
 // ---- Leak-aware weights (docs/LEAKS.md). A volume with "baker.distance_map" holds per probe an
 // N × N octahedral map of the mean and mean squared distance to the first surface, in units of
 // the map's cap. Pack each probe's map as an N × N tile of a two-channel texture (R: value 2t,
-// G: value 2t + 1 of texel t = i + N·j at tile texel (i, j): the R and G of grid distance_map_t);
-// `tile` is its first texel. Multiply
-// each corner's trilinear weight by bakerLeakWeight and divide by the sum of the products.
+// G: value 2t + 1 of texel t = i + N·j at tile texel (i, j): a .vdb's atlas grid distance_map
+// already holds probe (x, y, z)'s tile at (x·N, y·N) of slice z, R and G as here); `tile` is its
+// first texel. Multiply each corner's trilinear weight by bakerLeakWeight and divide by the sum of
+// the products.
 vec2 bakerOctahedralEncode(vec3 d) {
   vec2 p = d.xz / (abs(d.x) + abs(d.y) + abs(d.z));
   if (d.y < 0.0) p = (1.0 - abs(p.yx)) * vec2(p.x < 0.0 ? -1.0 : 1.0, p.y < 0.0 ? -1.0 : 1.0);

@@ -19,6 +19,7 @@
 
 #include "basis/BasisRegistry.h"
 #include "common/Error.h"
+#include "common/Fnv1a64.h"
 #include "formats/ExrSlices.h"
 #include "formats/VdbChecksum.h"
 #include "formats/VdbWriter.h"
@@ -262,7 +263,7 @@ TEST(VolumeFormats, AnyChangedByteOfAVdbIsCaughtByItsChecksum) {
   // A valid OpenVDB file without the checksum (another tool's, or an older baker's) is refused.
   openvdb::initialize();
   openvdb::io::File(dir + "/plain.vdb").write({openvdb::FloatGrid::create()});
-  EXPECT_NE(errorOf(dir + "/plain.vdb").find("has no 'baker.content_fnv1a64' metadata"), std::string::npos)
+  EXPECT_NE(errorOf(dir + "/plain.vdb").find("has no 'baker.content_xxh64' metadata"), std::string::npos)
       << errorOf(dir + "/plain.vdb");
 }
 
@@ -345,14 +346,30 @@ TEST(VolumeFormats, VdbWrittenGridByGridIsWhatOpenVdbWrites) {
                       << std::distance(a.begin(), std::mismatch(a.begin(), a.begin() + common, b.begin()).first);
 }
 
-// A volume is written with one RGB grid per distance-map texel (format 6); files before held a
-// scalar grid per value (format 3) and still read. Both give back the map's floats exactly, in
-// .vdb and in EXR slices.
+// Files of format 6 and older carry the FNV-1a hash of their bytes under the legacy key, sealed as
+// the writers of then did: the 16 digits of the placeholder replaced by the hash of the file
+// holding them as '0'.
+void sealWithFnv1a(const std::string& path) {
+  std::string bytes = fileBytes(path);
+  const std::size_t key = bytes.find(kVdbLegacyChecksumKey);
+  ASSERT_NE(key, std::string::npos) << path;
+  const std::size_t digits = bytes.find(kVdbChecksumPlaceholder, key);
+  ASSERT_NE(digits, std::string::npos) << path;
+  Fnv1a64 hash;
+  hash.add(bytes.data(), bytes.size());
+  bytes.replace(digits, 16, fmt::format("{:016x}", hash.value()));
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+}
+
+// A .vdb holds the distance map as one atlas grid (format 7), EXR slices as one RGB grid per texel
+// (format 6); .vdb files of format 6, and of format 3 (a scalar grid per value), still read. All
+// give back the map's floats exactly.
 TEST(VolumeFormats, DistanceMapsReadFromEitherLayout) {
   const std::string dir = test::makeTempDir("formats_distance_layouts");
   const auto basis = makeBasis("sh-l1");
   Volume v = randomVolume(*basis, 21, {9, 3, 10});
-  v.distanceMap = DistanceMapLayout::baked(4, 0.9375);
+  const int n = 4, texels = n * n;
+  v.distanceMap = DistanceMapLayout::baked(n, 0.9375);
   std::mt19937 rng(22);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
   v.distanceMoments.resize(std::size_t(v.grid.probeCount() * v.distanceMomentsPerProbe()));
@@ -362,78 +379,124 @@ TEST(VolumeFormats, DistanceMapsReadFromEitherLayout) {
   for (const std::string& path : {dir + "/new.vdb", dir + "/exr"}) {
     const Volume back = readVolume(path);
     EXPECT_TRUE(back.distanceMoments == v.distanceMoments) << path;
-    EXPECT_EQ(back.distanceMap.size, 4) << path;
+    EXPECT_EQ(back.distanceMap.size, n) << path;
     EXPECT_TRUE(back.distanceMap.skyVisibility) << path;
   }
 
-  // The same volume as a format-3 file: the new file's grids and metadata, each texel's grid cut
-  // into its three scalar grids of then.
+  // The atlas as FORMAT.md lays it out: texel t = u + n·v of probe (i, j, k) at voxel
+  // (i·n + u, j·n + v, k), R, G, B its values 2t, 2t + 1 and 2n² + t, voxels n times finer in x, y.
   openvdb::initialize();
   openvdb::io::File file(dir + "/new.vdb");
   file.open(/*delayLoad=*/false);
   openvdb::MetaMap metadata = *file.getMetadata();
-  EXPECT_EQ(metadata.metaValue<std::string>("baker.format_version"), "6");
+  EXPECT_EQ(metadata.metaValue<std::string>("baker.format_version"), "7");
   nlohmann::json map = nlohmann::json::parse(metadata.metaValue<std::string>("baker.distance_map"));
-  EXPECT_EQ(map.at("texel_grids"), "rgb");
-  openvdb::GridPtrVec grids;
-  std::vector<openvdb::FloatGrid::Ptr> scalars(std::size_t(3 * v.distanceMap.texels()));
+  EXPECT_EQ(map.at("texel_grids"), "atlas");
+  const auto atlas = openvdb::gridPtrCast<openvdb::Vec3SGrid>(file.readGrid("distance_map"));
+  ASSERT_TRUE(atlas);
+  EXPECT_EQ(atlas->activeVoxelCount(), openvdb::Index64(v.grid.probeCount() * texels));
+  const openvdb::Vec3d voxel = atlas->transform().voxelSize();
+  EXPECT_NEAR(voxel.x(), v.grid.spacing / n, 1e-12);
+  EXPECT_NEAR(voxel.y(), v.grid.spacing / n, 1e-12);
+  EXPECT_NEAR(voxel.z(), v.grid.spacing, 1e-12);
+  const std::int64_t perProbe = v.distanceMomentsPerProbe();
+  for (auto it = atlas->cbeginValueOn(); it; ++it) {
+    const openvdb::Coord c = it.getCoord();
+    const int i = c.x() / n, j = c.y() / n, t = c.x() % n + n * (c.y() % n);
+    const float* m = v.distanceMoments.data() + v.grid.linearIndex(i, j, c.z()) * perProbe;
+    ASSERT_EQ((*it)[0], m[2 * t]) << c;
+    ASSERT_EQ((*it)[1], m[2 * t + 1]) << c;
+    ASSERT_EQ((*it)[2], m[2 * texels + t]) << c;
+  }
+
+  // The same volume as the files of then: the atlas cut into an RGB grid per texel (format 6), or
+  // into scalar grids per value (format 3), each sealed with FNV-1a.
+  openvdb::GridPtrVec others, rgbGrids, scalarGrids(std::size_t(3 * texels));
+  std::vector<openvdb::Vec3SGrid::Ptr> perTexel;
+  for (int t = 0; t < texels; ++t) {
+    perTexel.push_back(openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f)));
+    perTexel.back()->setName(fmt::format("distance_map_{:03}", t));
+  }
+  for (auto it = atlas->cbeginValueOn(); it; ++it) {
+    const openvdb::Coord c = it.getCoord();
+    perTexel[std::size_t(c.x() % n + n * (c.y() % n))]->tree().setValue({c.x() / n, c.y() / n, c.z()}, *it);
+  }
   const openvdb::GridPtrVecPtr written = file.getGrids();
-  for (const openvdb::GridBase::Ptr& grid : *written) {
-    const std::string name = grid->getName();
-    if (name.rfind("distance_map_", 0) != 0) {
-      grids.push_back(grid);
-      continue;
-    }
-    const int t = std::stoi(name.substr(13));
-    const auto rgb = openvdb::gridPtrCast<openvdb::Vec3SGrid>(grid);
-    ASSERT_TRUE(rgb) << name << " is not an RGB grid";
+  for (const openvdb::GridBase::Ptr& grid : *written)
+    if (grid->getName() != "distance_map") others.push_back(grid);
+  file.close();
+  for (int t = 0; t < texels; ++t) {
+    perTexel[std::size_t(t)]->setTransform(others.front()->transform().copy());
+    rgbGrids.push_back(perTexel[std::size_t(t)]);
     for (int c = 0; c < 3; ++c) {
       auto scalar = openvdb::FloatGrid::create(0.0f);
-      scalar->setTransform(grid->transform().copy());
-      for (auto voxel = rgb->cbeginValueOn(); voxel; ++voxel) scalar->tree().setValue(voxel.getCoord(), (*voxel)[c]);
-      const int value = c < 2 ? 2 * t + c : 2 * v.distanceMap.texels() + t;
+      scalar->setTransform(others.front()->transform().copy());
+      for (auto voxel = perTexel[std::size_t(t)]->cbeginValueOn(); voxel; ++voxel)
+        scalar->tree().setValue(voxel.getCoord(), (*voxel)[c]);
+      const int value = c < 2 ? 2 * t + c : 2 * texels + t;
       scalar->setName(c < 2 ? fmt::format("distance_moments_{:03}", value) : fmt::format("sky_visibility_map_{:03}", t));
-      scalars[std::size_t(value)] = scalar;
+      scalarGrids[std::size_t(value)] = scalar;
     }
   }
-  file.close();
-  for (const auto& scalar : scalars) {
-    ASSERT_TRUE(scalar);
-    grids.push_back(scalar);
-  }
-  // `grids` under `metadata` with baker.distance_map `description` and format `version`.
-  const auto writeWith = [&](const std::string& name, const nlohmann::json& description, const std::string& version) {
+  // The grids of `distanceGrids` under `metadata` with baker.distance_map `description` and format `version`.
+  const auto writeWith = [&](const std::string& name, const openvdb::GridPtrVec& distanceGrids,
+                             const nlohmann::json& description, const std::string& version) {
+    openvdb::GridPtrVec grids = others;
+    grids.insert(grids.end(), distanceGrids.begin(), distanceGrids.end());
     metadata.removeMeta("baker.distance_map");
     metadata.insertMeta("baker.distance_map", openvdb::StringMetadata(description.dump()));
     metadata.removeMeta("baker.format_version");
     metadata.insertMeta("baker.format_version", openvdb::StringMetadata(version));
     metadata.removeMeta(kVdbChecksumKey);
-    metadata.insertMeta(kVdbChecksumKey, openvdb::StringMetadata(kVdbChecksumPlaceholder));
+    metadata.insertMeta(kVdbLegacyChecksumKey, openvdb::StringMetadata(kVdbChecksumPlaceholder));
     openvdb::io::File(dir + "/" + name).write(grids, metadata);
-    sealVdbChecksum(dir + "/" + name);
+    sealWithFnv1a(dir + "/" + name);
     return dir + "/" + name;
   };
-  nlohmann::json then = map;
+  nlohmann::json rgb = map, then = map;
+  rgb["texel_grids"] = "rgb";
   then.erase("texel_grids");
-  const std::string old = writeWith("old.vdb", then, "3");
-  const Volume back = readVolume(old);
-  EXPECT_TRUE(back.distanceMoments == v.distanceMoments);
-  expectSame(v, back, 0.0, "format 3");
-  EXPECT_EQ(distanceGridsOf(old), DistanceGrids::ScalarPerValue) << "what `baker inspect` names the grids by";
-  EXPECT_EQ(distanceGridsOf(dir + "/new.vdb"), DistanceGrids::RgbPerTexel);
+  const std::string format6 = writeWith("format6.vdb", rgbGrids, rgb, "6");
+  const std::string format3 = writeWith("format3.vdb", scalarGrids, then, "3");
+  for (const std::string& path : {format6, format3}) {
+    const Volume back = readVolume(path);
+    EXPECT_TRUE(back.distanceMoments == v.distanceMoments) << path;
+    expectSame(v, back, 0.0, path);
+  }
+  EXPECT_EQ(distanceGridsOf(format3), DistanceGrids::ScalarPerValue) << "what `baker inspect` names the grids by";
+  EXPECT_EQ(distanceGridsOf(format6), DistanceGrids::RgbPerTexel);
+  EXPECT_EQ(distanceGridsOf(dir + "/new.vdb"), DistanceGrids::Atlas);
   EXPECT_EQ(distanceGridsOf(dir + "/exr"), DistanceGrids::RgbPerTexel);
 
   // The key and the version must agree, and the key name a form this reader knows.
-  nlohmann::json atlas = map, noSky = map;
-  atlas["texel_grids"] = "atlas";
+  nlohmann::json unknown = map, noSky = rgb;
+  unknown["texel_grids"] = "tiles";
   noSky["sky_visibility"] = false;
-  for (const auto& [name, description, version, expected] :
-       {std::tuple{"unknown.vdb", atlas, "6", "\"texel_grids\" is \"atlas\""},
-        std::tuple{"without_sky.vdb", noSky, "6", "\"texel_grids\" is \"rgb\"; this reader knows \"rgb\", with"},
-        std::tuple{"early_key.vdb", map, "3", "texel grids came with format 6"},
-        std::tuple{"lost_key.vdb", then, "6", "has no \"texel_grids\": \"rgb\""}}) {
-    const std::string error = errorOf(writeWith(name, description, version));
+  for (const auto& [name, grids, description, version, expected] :
+       {std::tuple{"unknown.vdb", rgbGrids, unknown, "6", "\"texel_grids\" is \"tiles\""},
+        std::tuple{"without_sky.vdb", rgbGrids, noSky, "6", "\"texel_grids\" is \"rgb\"; this reader knows \"rgb\" and"},
+        std::tuple{"early_key.vdb", rgbGrids, rgb, "3", "\"texel_grids\": \"rgb\" in a file of format 3; it came with format 6"},
+        std::tuple{"early_atlas.vdb", rgbGrids, map, "6", "\"texel_grids\": \"atlas\" in a file of format 6; it came with format 7"},
+        std::tuple{"lost_key.vdb", scalarGrids, then, "6", "has no \"texel_grids\""}}) {
+    const std::string error = errorOf(writeWith(name, grids, description, version));
     EXPECT_NE(error.find(expected), std::string::npos) << name << ": " << error;
+  }
+  // An atlas voxel outside the probes' maps is refused, naming the grid.
+  {
+    auto beyond = atlas->deepCopy();
+    beyond->tree().setValue({v.grid.dims.x() * n, 0, 0}, openvdb::Vec3s(0.5f));
+    metadata.removeMeta(kVdbLegacyChecksumKey);
+    metadata.removeMeta("baker.distance_map");
+    metadata.insertMeta("baker.distance_map", openvdb::StringMetadata(map.dump()));
+    metadata.removeMeta("baker.format_version");
+    metadata.insertMeta("baker.format_version", openvdb::StringMetadata("7"));
+    metadata.insertMeta(kVdbChecksumKey, openvdb::StringMetadata(kVdbChecksumPlaceholder));
+    openvdb::GridPtrVec grids = others;
+    grids.push_back(beyond);
+    openvdb::io::File(dir + "/beyond.vdb").write(grids, metadata);
+    sealVdbChecksum(dir + "/beyond.vdb", std::filesystem::file_size(dir + "/beyond.vdb"));
+    const std::string error = errorOf(dir + "/beyond.vdb");
+    EXPECT_NE(error.find("grid 'distance_map' has a voxel at (36, 0, 0), outside the atlas"), std::string::npos) << error;
   }
 }
 
