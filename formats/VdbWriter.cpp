@@ -91,10 +91,24 @@ openvdb::MetaMap fileMetadata(const Volume& v, const Basis& basis, bool hasProbe
 // Why the last file operation failed, as far as the C library says.
 std::string failureReason() { return errno != 0 ? std::strerror(errno) : "the output stream failed"; }
 
-// OpenVDB's public writer takes every grid at once, so all of a volume's grids (84 for sh-l2
-// with a distance map, 102 with the sky's parts) would be alive together, each with its own 32³
-// and 16³ internal nodes. Writing sixteen grids at a time bounds that; Archive's protected members write the same header
-// and grid records as File::write, given what holds for our grids: none is null, their names are
+// What a writer of grids builds: a grid, and whether its leaves are worth Blosc's work.
+struct BuiltGrid {
+  openvdb::GridBase::Ptr grid;
+  bool compressed = true;
+};
+
+// Writes grids with mask compression only: each grid's record carries its own compression flags,
+// which readers follow.
+class MaskCompressedArchive : public openvdb::io::Archive {
+ public:
+  MaskCompressedArchive() { setCompression(openvdb::io::COMPRESS_ACTIVE_MASK); }
+  using openvdb::io::Archive::writeGrid;
+};
+
+// OpenVDB's public writer takes every grid at once, so all of a volume's grids (21 for sh-l2
+// with a distance map, 39 with the sky's parts) would be alive together, each with its own 32³
+// and 16³ internal nodes. Writing sixteen grids at a time bounds that; Archive's protected members
+// write the same header and grid records as File::write, given what holds for our grids: none is null, their names are
 // unique and not empty (so File::write would rename none), and none shares its tree with another
 // (so none would be written as an instance).
 //
@@ -104,19 +118,6 @@ std::string failureReason() { return errno != 0 ? std::strerror(errno) : "the ou
 // by where the record lands in the file. Most of a write is per grid (building the tree, its
 // statistics, compressing its topology and buffers): this spreads it over the cores, and the file
 // is the same bytes at any thread count.
-// What a writer of grids builds: a grid, and whether its leaves are worth Blosc's work.
-struct BuiltGrid {
-  openvdb::GridBase::Ptr grid;
-  bool compressed = true;
-};
-
-// Writes grids with mask compression only.
-class MaskCompressedArchive : public openvdb::io::Archive {
- public:
-  MaskCompressedArchive() { setCompression(openvdb::io::COMPRESS_ACTIVE_MASK); }
-  using openvdb::io::Archive::writeGrid;
-};
-
 class GridByGridArchive : public openvdb::io::Archive {
  public:
   // `gridAt(i)` builds grid i (a BuiltGrid); it is called from several threads at once. Returns
