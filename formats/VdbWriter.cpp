@@ -32,7 +32,7 @@ namespace {
 
 // A stored brick (exactly one OpenVDB leaf) and, for each probe of it the level holds, the
 // probe's voxel in the leaf and its row in the volume's arrays. Worked out once per level rather
-// than once per grid: a volume has dozens of grids (84 for sh-l2 with a distance map).
+// than once per grid: a volume has dozens of grids (39 for sh-l2 with the sky's parts).
 struct StoredBrick {
   openvdb::Coord origin;
   std::vector<std::pair<openvdb::Index, std::int64_t>> voxelRows;
@@ -91,18 +91,11 @@ openvdb::MetaMap fileMetadata(const Volume& v, const Basis& basis, bool hasProbe
 // Why the last file operation failed, as far as the C library says.
 std::string failureReason() { return errno != 0 ? std::strerror(errno) : "the output stream failed"; }
 
-// What a writer of grids builds: a grid, and whether its leaves are worth Blosc's work.
+// What a writer of grids builds: a grid, and whether it is serialised straight into the file in
+// its turn rather than beside the others into a buffer of its own.
 struct BuiltGrid {
   openvdb::GridBase::Ptr grid;
-  bool compressed = true;
-};
-
-// Writes grids with mask compression only: each grid's record carries its own compression flags,
-// which readers follow.
-class MaskCompressedArchive : public openvdb::io::Archive {
- public:
-  MaskCompressedArchive() { setCompression(openvdb::io::COMPRESS_ACTIVE_MASK); }
-  using openvdb::io::Archive::writeGrid;
+  bool direct = false;
 };
 
 // OpenVDB's public writer takes every grid at once, so all of a volume's grids (21 for sh-l2
@@ -159,13 +152,9 @@ class GridByGridArchive : public openvdb::io::Archive {
   struct GridRecord {
     std::stringstream bytes{std::ios::in | std::ios::out | std::ios::binary};
     openvdb::io::GridDescriptor descriptor;
-    // A grid stored without Blosc is serialised straight into the file when its turn comes:
-    // that is mostly copying, which gains nothing from running beside the others, and its
-    // buffer would be the largest of the write (the distance atlas: 10 MB at 13 520 probes).
+    // A grid written straight into the file when its turn comes.
     openvdb::GridBase::ConstPtr direct;
   };
-
-  MaskCompressedArchive maskCompressed_;
 
   // The grid's record as writeGrid puts it in a stream with the file's settings (copied from
   // `file`: version, compression, statistics, stream metadata), starting at position 0. A grid
@@ -173,7 +162,7 @@ class GridByGridArchive : public openvdb::io::Archive {
   void record(const std::ostream& file, const std::string& path, const BuiltGrid& built, GridRecord* r) const {
     const openvdb::GridBase::ConstPtr grid = built.grid;
     r->descriptor = openvdb::io::GridDescriptor(grid->getName(), grid->type(), grid->saveFloatAsHalf());
-    if (!built.compressed) {
+    if (built.direct) {
       r->direct = grid;
       return;
     }
@@ -182,11 +171,9 @@ class GridByGridArchive : public openvdb::io::Archive {
     if (!r->bytes) throw std::runtime_error(fmt::format("{}: cannot serialise grid '{}' in memory", path, grid->getName()));
   }
 
-  // A grid stored with mask compression only, written at the stream's position as Archive::write
-  // writes each grid, the file's compression restored after it (a grid's record sets its own).
+  // The grid written at the stream's position as Archive::write writes each grid.
   void writeDirect(std::ostream& os, GridRecord& r) const {
-    maskCompressed_.writeGrid(r.descriptor, r.direct, os, /*seekable=*/true);
-    openvdb::io::setDataCompression(os, compression());
+    writeGrid(r.descriptor, r.direct, os, /*seekable=*/true);
     r.direct.reset();
   }
 
@@ -306,9 +293,9 @@ void writeLevels(const std::vector<LevelGrids>& levels, const Basis& basis, cons
     openvdb::GridBase::Ptr grid = levelGrid(volume, bricks[n], spec);
     grid->setName(levels[n].prefix + spec.name);
     grid->setTransform(gridTransform(volume, spec));
-    // Blosc over the atlas's leaves costs more time than its bytes are worth: a third of the whole
-    // write for a third of the file (default_room at 256 rays: 9 ms for 2.4 MB -> 1.4 MB).
-    return BuiltGrid{grid, spec.kind != VolumeGrid::Kind::DistanceAtlas};
+    // The atlas holds most of a volume's bytes (N² texels a probe): built and serialised beside
+    // fifteen other grids, with its record in a buffer of its own, it would be alive twice.
+    return BuiltGrid{grid, spec.kind == VolumeGrid::Kind::DistanceAtlas};
   };
 
   AtomicFile out(path);

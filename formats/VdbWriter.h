@@ -8,10 +8,11 @@
 namespace baker {
 
 // Writes `volume` as an OpenVDB file: one grid per entry of volumeGrids (Vec3s for three
-// components, float for one, int32 for probe_state), voxel (i,j,k) = probe (i,j,k), each
-// grid's transform mapping index space to world space. Sparse: only the bricks (leaves) that
-// storedBricks keeps. Grids are built and written one at a time, and the file
-// is the one OpenVDB's own writer makes of them. Nothing appears at `path` on failure.
+// components, float for one, int32 for probe_state), voxel (i,j,k) = probe (i,j,k) (N² voxels a
+// probe in the distance atlas), each grid's transform mapping index space to world space. Sparse:
+// only the bricks (leaves) that storedBricks keeps. Grids are built and written a batch at a
+// time, and the file is the one OpenVDB's own writer makes of them. Nothing appears at `path` on
+// failure.
 void writeVdb(const Volume& volume, const Basis& basis, const std::string& path);
 
 // Writes every level of an adaptive volume to one OpenVDB file (docs/FORMAT.md, "Levels"):
