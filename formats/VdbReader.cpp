@@ -58,6 +58,15 @@ ProbeGrid levelGrid(const openvdb::MetaMap& meta, const std::string& key, const 
   return grid;
 }
 
+// Grid `name` of the file as a GridType; InputError when it is missing or of another type.
+template <typename GridType>
+typename GridType::Ptr requiredGrid(openvdb::io::File& file, const std::string& name, const std::string& path) {
+  if (!file.hasGrid(name)) throw InputError(fmt::format("{}: grid '{}' is missing", path, name));
+  auto grid = openvdb::gridPtrCast<GridType>(file.readGrid(name));
+  if (!grid) throw InputError(fmt::format("{}: grid '{}' has the wrong value type", path, name));
+  return grid;
+}
+
 // A voxel outside the bricks the volume holds: another shard's (a part read as its own bricks
 // only), or a brick a level does not hold (no leaf in its probe_state grid).
 InputError voxelNotHeld(const std::string& path, const std::string& name, const Volume& v, std::int64_t p) {
@@ -72,9 +81,7 @@ InputError voxelNotHeld(const std::string& path, const std::string& name, const 
 template <typename GridType, typename Store>
 void readVoxels(openvdb::io::File& file, const std::string& name, const ProbeGrid& g, const std::string& path,
                 Store store) {
-  if (!file.hasGrid(name)) throw InputError(fmt::format("{}: grid '{}' is missing", path, name));
-  auto grid = openvdb::gridPtrCast<GridType>(file.readGrid(name));
-  if (!grid) throw InputError(fmt::format("{}: grid '{}' has the wrong value type", path, name));
+  const auto grid = requiredGrid<GridType>(file, name, path);
   for (auto it = grid->cbeginValueOn(); it; ++it) {
     const openvdb::Coord c = it.getCoord();
     if (c.x() < 0 || c.y() < 0 || c.z() < 0 || c.x() >= g.dims.x() || c.y() >= g.dims.y() || c.z() >= g.dims.z())
@@ -87,9 +94,7 @@ void readVoxels(openvdb::io::File& file, const std::string& name, const ProbeGri
 // The distance atlas's voxels into the maps of the probes they belong to, refusing a voxel
 // outside the atlas of the grid's probes or of a probe the volume does not hold.
 void readDistanceAtlas(openvdb::io::File& file, const std::string& name, const std::string& path, Volume& volume) {
-  if (!file.hasGrid(name)) throw InputError(fmt::format("{}: grid '{}' is missing", path, name));
-  auto grid = openvdb::gridPtrCast<openvdb::Vec3SGrid>(file.readGrid(name));
-  if (!grid) throw InputError(fmt::format("{}: grid '{}' has the wrong value type", path, name));
+  const auto grid = requiredGrid<openvdb::Vec3SGrid>(file, name, path);
   const ProbeGrid& g = volume.grid;
   const int size = volume.distanceMap.size;
   const std::vector<VolumeGrid> texelGrids = perProbeGridsOf({name, VolumeGrid::Kind::DistanceAtlas, 3}, volume.distanceMap);
@@ -186,9 +191,7 @@ std::uint8_t subBricksActive(const openvdb::Int32Grid::TreeType::LeafNodeType& l
 // and the sub-bricks each holds (its active voxels).
 std::vector<std::int64_t> bricksInFile(openvdb::io::File& file, const std::string& name, const ProbeGrid& g,
                                        const std::string& path, std::vector<std::uint8_t>& masks) {
-  if (!file.hasGrid(name)) throw InputError(fmt::format("{}: grid '{}' is missing", path, name));
-  auto grid = openvdb::gridPtrCast<openvdb::Int32Grid>(file.readGrid(name));
-  if (!grid) throw InputError(fmt::format("{}: grid '{}' has the wrong value type", path, name));
+  const auto grid = requiredGrid<openvdb::Int32Grid>(file, name, path);
   std::vector<std::int64_t> bricks;
   for (auto leaf = grid->tree().cbeginLeaf(); leaf; ++leaf) {
     const openvdb::Coord c = leaf->origin();

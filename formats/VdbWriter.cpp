@@ -157,8 +157,7 @@ class GridByGridArchive : public openvdb::io::Archive {
   };
 
   // The grid's record as writeGrid puts it in a stream with the file's settings (copied from
-  // `file`: version, compression, statistics, stream metadata), starting at position 0. A grid
-  // records its own compression, which readers follow.
+  // `file`: version, compression, statistics, stream metadata), starting at position 0.
   void record(const std::ostream& file, const std::string& path, const BuiltGrid& built, GridRecord* r) const {
     const openvdb::GridBase::ConstPtr grid = built.grid;
     r->descriptor = openvdb::io::GridDescriptor(grid->getName(), grid->type(), grid->saveFloatAsHalf());
@@ -212,6 +211,7 @@ openvdb::Vec3SGrid::Ptr distanceAtlas(const Volume& volume, const std::vector<St
     for (int c = 0; c < 3; ++c) columns.push_back(floatColumn(volume, distanceTexelGrid(t, texels), c));
   auto grid = openvdb::Vec3SGrid::create(openvdb::Vec3s(0.0f));
   std::vector<std::unique_ptr<Leaf>> leaves{std::size_t(texels)};  // leaf (a, b) of a brick at a + size·b
+  std::vector<openvdb::Vec3s*> values;                              // their buffers
   for (const StoredBrick& brick : bricks) {
     for (int b = 0; b < size; ++b)
       for (int a = 0; a < size; ++a)
@@ -221,7 +221,7 @@ openvdb::Vec3SGrid::Ptr distanceAtlas(const Volume& volume, const std::vector<St
             openvdb::Vec3s(0.0f), false);
     // Values written through the leaves' buffers (setValueOn checks, value by value, whether the
     // buffer is out of core), the active bits beside them.
-    std::vector<openvdb::Vec3s*> values;
+    values.clear();
     for (const std::unique_ptr<Leaf>& leaf : leaves) values.push_back(leaf->buffer().data());
     for (const auto& [voxel, row] : brick.voxelRows) {
       const openvdb::Coord probe = Leaf::offsetToLocalCoord(voxel);
