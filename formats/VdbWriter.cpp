@@ -101,9 +101,10 @@ struct BuiltGrid {
 // OpenVDB's public writer takes every grid at once, so all of a volume's grids (21 for sh-l2
 // with a distance map, 39 with the sky's parts) would be alive together, each with its own 32³
 // and 16³ internal nodes. Writing sixteen grids at a time bounds that; Archive's protected members
-// write the same header and grid records as File::write, given what holds for our grids: none is null, their names are
-// unique and not empty (so File::write would rename none), and none shares its tree with another
-// (so none would be written as an instance).
+// write the same header and grid records as File::write, given what holds for our grids: none is
+// null, their names are unique and not empty (so File::write would rename none), and none shares
+// its tree with another (so none would be written as an instance). One difference: a record
+// carries no `file_delayed_load` metadata (see writeRecord).
 //
 // A grid's record does not depend on what precedes it but for three stream positions (where its
 // data starts, where its buffers start, where it ends), so the grids of a batch are built and
@@ -118,6 +119,7 @@ class GridByGridArchive : public openvdb::io::Archive {
   template <typename GridAt>
   std::uint64_t writeGrids(std::ostream& os, const std::string& path, const openvdb::MetaMap& metadata,
                            std::int32_t gridCount, GridAt gridAt) const {
+    // OpenVDB keeps in the stream the address of this pointer, not the pointer.
     auto streamMetadata = std::make_shared<openvdb::io::StreamMetadata>();
     openvdb::io::setStreamMetadataPtr(os, streamMetadata, /*transfer=*/false);
     openvdb::io::setDataCompression(os, compression());
@@ -131,10 +133,10 @@ class GridByGridArchive : public openvdb::io::Archive {
       records.clear();
       records.resize(std::size_t(std::min(kGridsAtOnce, gridCount - first)));
       tbb::parallel_for(0, int(records.size()),
-                        [&](int k) { record(os, path, gridAt(first + k), &records[std::size_t(k)]); });
+                        [&](int k) { record(os, streamMetadata, path, gridAt(first + k), &records[std::size_t(k)]); });
       for (GridRecord& r : records) {
         if (r.direct)
-          writeDirect(os, r);
+          writeDirect(os, streamMetadata, r);
         else
           append(os, r);
         if (!os) throw std::runtime_error(fmt::format("{}: cannot write OpenVDB file: {}", path, failureReason()));
@@ -156,9 +158,10 @@ class GridByGridArchive : public openvdb::io::Archive {
     openvdb::GridBase::ConstPtr direct;
   };
 
-  // The grid's record as writeGrid puts it in a stream with the file's settings (copied from
+  // The grid's record as writeRecord puts it in a stream with the file's settings (copied from
   // `file`: version, compression, statistics, stream metadata), starting at position 0.
-  void record(const std::ostream& file, const std::string& path, const BuiltGrid& built, GridRecord* r) const {
+  void record(const std::ostream& file, openvdb::io::StreamMetadata::Ptr& fileLevel, const std::string& path,
+              const BuiltGrid& built, GridRecord* r) const {
     const openvdb::GridBase::ConstPtr grid = built.grid;
     r->descriptor = openvdb::io::GridDescriptor(grid->getName(), grid->type(), grid->saveFloatAsHalf());
     if (built.direct) {
@@ -166,14 +169,57 @@ class GridByGridArchive : public openvdb::io::Archive {
       return;
     }
     r->bytes.copyfmt(file);
-    writeGrid(r->descriptor, grid, r->bytes, /*seekable=*/true);
+    writeRecord(r->descriptor, *grid, r->bytes, fileLevel);
     if (!r->bytes) throw std::runtime_error(fmt::format("{}: cannot serialise grid '{}' in memory", path, grid->getName()));
   }
 
   // The grid written at the stream's position as Archive::write writes each grid.
-  void writeDirect(std::ostream& os, GridRecord& r) const {
-    writeGrid(r.descriptor, r.direct, os, /*seekable=*/true);
+  void writeDirect(std::ostream& os, openvdb::io::StreamMetadata::Ptr& fileLevel, GridRecord& r) const {
+    writeRecord(r.descriptor, *r.direct, os, fileLevel);
     r.direct.reset();
+  }
+
+  // The grid's record at the stream's position, as Archive::writeGrid writes it to a seekable
+  // stream but without the `file_delayed_load` metadata it adds to every grid: filling that
+  // compresses every leaf's values once more only to learn their compressed sizes (a fifth of
+  // default_room's write, measured), for readers that load a grid's leaves lazily. Such readers
+  // still read these grids, as they read files written before OpenVDB 6.2; this project's reader
+  // reads every leaf. `fileLevel` is the file's stream metadata, which `os` points to; a grid's is
+  // the file's with the grid's own settings, and the file's is put back.
+  void writeRecord(openvdb::io::GridDescriptor& gd, const openvdb::GridBase& grid, std::ostream& os,
+                   openvdb::io::StreamMetadata::Ptr& fileLevel) const {
+    struct RestoreFileLevel {
+      std::ostream& os;
+      openvdb::io::StreamMetadata::Ptr& meta;
+      ~RestoreFileLevel() { openvdb::io::setStreamMetadataPtr(os, meta, /*transfer=*/false); }
+    } restore{os, fileLevel};
+    auto gridLevel = std::make_shared<openvdb::io::StreamMetadata>(*fileLevel);
+    gridLevel->setHalfFloat(grid.saveFloatAsHalf());
+    gridLevel->gridMetadata() = static_cast<const openvdb::MetaMap&>(grid);
+    openvdb::io::setStreamMetadataPtr(os, gridLevel, /*transfer=*/false);
+
+    gd.writeHeader(os);
+    const std::int64_t positionsAt = std::int64_t(os.tellp());
+    gd.writeStreamPos(os);  // placeholders, rewritten once the record's end is known
+    gd.setGridPos(os.tellp());
+    setGridCompression(os, grid);
+    if (openvdb::io::getWriteGridStatsMetadata(os)) {
+      const openvdb::GridBase::Ptr withStatistics = openvdb::ConstPtrCast<openvdb::GridBase>(grid.copyGrid());
+      withStatistics->addStatsMetadata();
+      withStatistics->insertMeta(openvdb::GridBase::META_FILE_COMPRESSION,
+                                 openvdb::StringMetadata(openvdb::io::compressionToString(openvdb::io::getDataCompression(os))));
+      withStatistics->writeMeta(os);
+    } else {
+      grid.writeMeta(os);
+    }
+    grid.writeTransform(os);
+    grid.writeTopology(os);
+    gd.setBlockPos(os.tellp());
+    grid.writeBuffers(os);
+    gd.setEndPos(os.tellp());
+    os.seekp(positionsAt, std::ios_base::beg);
+    gd.writeStreamPos(os);
+    gd.seekToEnd(os);
   }
 
   // The record at the stream's position, its three positions (written by
