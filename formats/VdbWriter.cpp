@@ -180,12 +180,12 @@ class GridByGridArchive : public openvdb::io::Archive {
   }
 
   // The grid's record at the stream's position, as Archive::writeGrid writes it to a seekable
-  // stream but without the `file_delayed_load` metadata it adds to every grid: filling that
-  // compresses every leaf's values once more only to learn their compressed sizes (a fifth of
-  // default_room's write, measured), for readers that load a grid's leaves lazily. Such readers
-  // still read these grids, as they read files written before OpenVDB 6.2; this project's reader
-  // reads every leaf. `fileLevel` is the file's stream metadata, which `os` points to; a grid's is
-  // the file's with the grid's own settings, and the file's is put back.
+  // stream but without the `file_delayed_load` metadata it adds to grids of our value types:
+  // filling that compresses every leaf's values once more only to learn their compressed sizes
+  // (about a quarter of default_room's write, measured), for readers that load a grid's leaves
+  // lazily. Such readers still read these grids, as they read files written before OpenVDB 6.2.
+  // `fileLevel` is the file's stream metadata, which `os` points to; a grid's is the file's with
+  // the grid's own settings, and the file's is put back.
   void writeRecord(openvdb::io::GridDescriptor& gd, const openvdb::GridBase& grid, std::ostream& os,
                    openvdb::io::StreamMetadata::Ptr& fileLevel) const {
     struct RestoreFileLevel {

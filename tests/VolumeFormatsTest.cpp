@@ -14,6 +14,7 @@
 #include <openvdb/openvdb.h>
 #include <random>
 #include <sstream>
+#include <stdexcept>
 #include <sys/resource.h>
 #include <thread>
 #include <tuple>
@@ -311,18 +312,19 @@ TEST(VolumeFormats, StandardToolsReadTheFiles) {
   EXPECT_NE(exr.str().find("baker.basis"), std::string::npos);
 }
 
-// The writer builds and writes one grid at a time through OpenVDB's Archive, to reuse memory.
-// Its file must be byte for byte the one OpenVDB's own all-at-once writer makes from the same
-// grids and metadata, apart from the UUID every OpenVDB file carries.
 // A .vdb file's bytes with the `file_delayed_load` metadata that OpenVDB 10's writer adds to every
 // grid taken out, and each grid record's metadata count and stream positions mended to match.
 // Walks the file as OpenVDB's Archive writes it: a 57-byte header (magic, three version words, a
 // flag, a 36-character UUID), the file's metadata, the grid count, then per grid its name, type
 // and instance parent, three stream positions (where its data starts, where its buffers start,
-// where it ends), its compression word and its metadata.
+// where it ends), its compression word and its metadata. Throws if the file ends early.
 std::string withoutDelayedLoadMetadata(const std::string& file) {
   std::size_t at = 57;
+  const auto within = [&](std::size_t end) {
+    if (end > file.size()) throw std::runtime_error(fmt::format("the file ends at {}, before byte {}", file.size(), end));
+  };
   const auto u32 = [&] {
+    within(at + 4);
     std::uint32_t v = 0;
     std::memcpy(&v, file.data() + at, sizeof v);
     at += sizeof v;
@@ -330,6 +332,7 @@ std::string withoutDelayedLoadMetadata(const std::string& file) {
   };
   const auto string = [&] {
     const std::uint32_t n = u32();
+    within(at + n);
     at += n;
     return file.substr(at - n, n);
   };
@@ -346,7 +349,9 @@ std::string withoutDelayedLoadMetadata(const std::string& file) {
     const std::size_t recordAt = at;
     for (int s = 0; s < 3; ++s) string();
     std::int64_t positions[3];
+    within(at + sizeof positions);
     std::memcpy(positions, file.data() + at, sizeof positions);
+    within(std::size_t(positions[2]));
     EXPECT_EQ(std::int64_t(at + sizeof positions), positions[0]) << "grid " << g;
     out += file.substr(recordAt, at - recordAt);
     at = std::size_t(positions[0]) + 4;
@@ -376,12 +381,21 @@ std::string withoutDelayedLoadMetadata(const std::string& file) {
   return out;
 }
 
-// The same bytes as OpenVDB's own writer, but for the delayed-load metadata it adds to every grid
-// (see writeRecord in VdbWriter.cpp).
+// The writer builds and writes sixteen grids at a time through OpenVDB's Archive, to bound
+// memory, and the distance atlas straight into the file. Its file must be byte for byte the one
+// OpenVDB's own all-at-once writer makes from the same grids and metadata, but for the UUID every
+// OpenVDB file carries and the delayed-load metadata OpenVDB adds to every grid (see writeRecord
+// in VdbWriter.cpp).
 TEST(VolumeFormats, VdbWrittenGridByGridIsWhatOpenVdbWrites) {
   const std::string dir = test::makeTempDir("formats_grid_by_grid");
   const auto basis = makeBasis("sh-l2");
-  writeVdb(randomVolume(*basis, 13, {17, 9, 8}), *basis, dir + "/ours.vdb");
+  Volume v = randomVolume(*basis, 13, {17, 9, 8});
+  v.distanceMap = DistanceMapLayout::baked(2, 0.5);
+  std::mt19937 rng(14);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  v.distanceMoments.resize(std::size_t(v.grid.probeCount() * v.distanceMomentsPerProbe()));
+  for (float& m : v.distanceMoments) m = unit(rng);
+  writeVdb(v, *basis, dir + "/ours.vdb");
   openvdb::initialize();
   openvdb::io::File ours(dir + "/ours.vdb");
   ours.open(/*delayLoad=*/false);
@@ -389,10 +403,9 @@ TEST(VolumeFormats, VdbWrittenGridByGridIsWhatOpenVdbWrites) {
   const std::string ourUuid = ours.getUniqueTag();
   // In the file's order, which is the layout's (getGrids would sort them by name).
   openvdb::GridPtrVec grids;
-  for (const VolumeGrid& spec : volumeGrids(*basis, basis->functions(0).count(), true, DistanceMapLayout{0, 0.0}, DistanceGrids::RgbPerTexel, false, false))
-    grids.push_back(ours.readGrid(spec.name));
+  for (const VolumeGrid& spec : volumeGrids(*basis, v, VolumeFile::OpenVdb)) grids.push_back(ours.readGrid(spec.name));
   ours.close();
-  ASSERT_EQ(grids.size(), 20u);
+  ASSERT_EQ(grids.size(), 21u);  // sh-l2's 9 × 2, sky visibility, probe states, the atlas
   openvdb::io::File theirs(dir + "/theirs.vdb");
   theirs.write(grids, *metadata);
   const std::string theirUuid = theirs.getUniqueTag();  // set when its header was written
