@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "common/UpperBound.h"
 #include "scene/Scene.h"
 
 namespace baker {
@@ -67,22 +68,15 @@ class EmitterSampler {
                                                                              float xi2) const {
   // std::upper_bound of xiChoice in the running sums, searched only among the few entries its
   // bucket of the guide table allows (a search of every entry made a dozen dependent reads in a
-  // scene of thousands of emitters), and without branches: its comparisons go either way at
-  // random, and each mispredicted one costs more than the comparison.
+  // scene of thousands of emitters), and without branches (upperBound).
   const double x = xiChoice;
-  const double* first = cumulative_.data();
-  std::size_t length = cumulative_.size();
+  std::size_t from = 0, length = cumulative_.size();
   if (!guide_.empty()) {
     const std::size_t bucket = bucketOf(x, length);
-    first += guide_[bucket];
+    from = guide_[bucket];
     length = guide_[bucket + 1] - guide_[bucket] + 1;
   }
-  while (length > 1) {
-    const std::size_t half = length / 2;
-    first += (first[half - 1] <= x) ? half : 0;
-    length -= half;
-  }
-  const std::size_t index = std::size_t(first - cumulative_.data()) + (*first <= x ? 1 : 0);
+  const std::size_t index = from + upperBound(cumulative_.data() + from, length, x);
   const Emitter& e = emitters_[std::min(index, emitters_.size() - 1)];
   // Uniform on the triangle: the square-root warp of the unit square.
   const float s = std::sqrt(xi1);
