@@ -4,7 +4,7 @@
 namespace baker {
 
 // std::upper_bound over `count` ascending values: the index of the first one above x (count if
-// none). Sampling a table draws x at random, so each comparison of a binary search goes either
+// none; 0 for a NaN x, where std::upper_bound gives count). Sampling a table draws x at random, so each comparison of a binary search goes either
 // way at random and a branch on it is mispredicted half the time; here every step adds a mask
 // instead (`? half : 0` is compiled to a branch by GCC). That pays for a short search in cache
 // (EmitterSampler's guided buckets: default_room bakes 4 % faster). Over a long table read from

@@ -26,6 +26,8 @@ TEST(UpperBound, IsStdUpperBound) {
       const auto expected = std::size_t(std::upper_bound(values.begin(), values.end(), x) - values.begin());
       EXPECT_EQ(upperBound(values.data(), values.size(), x), expected) << count << " values, x = " << x;
     }
+    // No value is found not above NaN (std::upper_bound, testing !(x < v), would give count).
+    EXPECT_EQ(upperBound(values.data(), values.size(), std::nan("")), 0u) << count << " values";
   }
 }
 
