@@ -173,7 +173,7 @@ class GridByGridArchive : public openvdb::io::Archive {
     if (!r->bytes) throw std::runtime_error(fmt::format("{}: cannot serialise grid '{}' in memory", path, grid->getName()));
   }
 
-  // The grid written at the stream's position as Archive::write writes each grid.
+  // The grid's record written at the stream's position, in its turn.
   void writeDirect(std::ostream& os, openvdb::io::StreamMetadata::Ptr& fileLevel, GridRecord& r) const {
     writeRecord(r.descriptor, *r.direct, os, fileLevel);
     r.direct.reset();
