@@ -336,12 +336,13 @@ std::string withoutDelayedLoadMetadata(const std::string& file) {
     at += n;
     return file.substr(at - n, n);
   };
-  const auto skipMetadata = [&] {
-    string();
+  const auto metadataEntry = [&] {  // its name, the type and value skipped
+    std::string name = string();
     string();
     at += u32();
+    return name;
   };
-  for (std::uint32_t n = u32(); n > 0; --n) skipMetadata();
+  for (std::uint32_t n = u32(); n > 0; --n) metadataEntry();
   const std::uint32_t gridCount = u32();
   std::string out = file.substr(0, at);
   std::int64_t moved = 0;  // by what was taken out of the records before
@@ -360,10 +361,7 @@ std::string withoutDelayedLoadMetadata(const std::string& file) {
     std::size_t entryAt = 0, entryEnd = 0;
     for (std::uint32_t m = 0; m < count; ++m) {
       const std::size_t start = at;
-      const std::string name = string();
-      string();
-      at += u32();
-      if (name == openvdb::GridBase::META_FILE_DELAYED_LOAD) entryAt = start, entryEnd = at;
+      if (metadataEntry() == openvdb::GridBase::META_FILE_DELAYED_LOAD) entryAt = start, entryEnd = at;
     }
     EXPECT_NE(entryEnd, 0u) << "grid " << g << " has no file_delayed_load metadata";
     const std::int64_t taken = std::int64_t(entryEnd - entryAt);
