@@ -9,7 +9,9 @@
 //    recorded during the bake and replayed in the same packets and streams, from cache as the
 //    bake traces them (trace-only mode); and shading's time per ray, with what the target allows.
 //    Embree's calls are also timed one by one inside a bake and in its replay: equal times show
-//    that the rest of the bake is shading, not Embree slowed down by it.
+//    that the rest of the bake is shading, not Embree slowed down by it. The same rays are also
+//    traced in Embree's other forms of call (EmbreeCallForms.h), to see whether one would trace
+//    them faster than the bake's own.
 // 2. Stage breakdown: load, BVH, trace (the replay), shade (the rest of tracing), project, write.
 // 3. Scaling: two threads against one; cost per probe, and the share of projection and write,
 //    at 1×, 2× and 4× the probes; peak memory of `baker` processes at three grid sizes.
@@ -33,6 +35,7 @@
 #include <vector>
 
 #include "bake/BakeJob.h"
+#include "bench/EmbreeCallForms.h"
 #include "bake/PathIntegrator.h"
 #include "cli/CommandLine.h"
 #include "common/Error.h"
@@ -189,6 +192,7 @@ nlohmann::json run(const Options& o) {
     replaySeconds(tracer, log);
     observer.timeEmbreeCalls(nullptr);
   }
+  out["embree_call_forms"] = embreeCallForms(scene, log);
   constexpr double kThroughputTarget = 0.85;
   const double traced = double(stats.rays.total());
   const double bakeRate = traced / stats.traceSeconds, limitRate = traced / replay;
@@ -364,6 +368,9 @@ int main(int argc, char** argv) {
               << result["throughput"]["shade_nanoseconds_per_ray_at_target"] << " at the target\n"
               << "Embree's calls, each timed: " << result["throughput"]["embree_call_seconds_inside_bake"]
               << " s inside a bake, " << result["throughput"]["embree_call_seconds_replaying"] << " s replaying it\n";
+    std::cout << "Embree's call forms, time over the bake's own form: closest "
+              << result["embree_call_forms"]["closest"].dump() << "; shadow " << result["embree_call_forms"]["shadow"].dump()
+              << "\n";
     std::cout << "stages (s): " << result["stages_seconds"].dump() << "; projection + operators + write "
               << result["projection_and_write_fraction"] << " of the bake (target "
               << result["projection_and_write_target"] << ")\n";
