@@ -6,50 +6,14 @@
 #include <chrono>
 #include <functional>
 #include <limits>
-#include <stdexcept>
+#include <map>
+#include <memory>
+#include <string>
+#include <type_traits>
 #include <vector>
 
 namespace baker {
 namespace {
-
-// Every instance's triangles in world space, opaque, in one Embree scene.
-class FlatEmbreeScene {
- public:
-  explicit FlatEmbreeScene(const Scene& scene) : device_(rtcNewDevice(nullptr)) {
-    if (!device_) throw std::runtime_error("Embree: cannot create a device");
-    scene_ = rtcNewScene(device_);
-    rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_HIGH);
-    for (const Instance& instance : scene.instances) {
-      const Mesh& mesh = scene.meshes[instance.mesh];
-      if (mesh.triangles.empty()) continue;
-      RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-      // One vertex more than the mesh has: Embree's SIMD loads read past the last one.
-      auto* xyz = static_cast<float*>(rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                              3 * sizeof(float), mesh.positions.size() + 1));
-      for (std::size_t v = 0; v < mesh.positions.size(); ++v)
-        Eigen::Vector3f::Map(xyz + 3 * v) = (instance.objectToWorld * mesh.positions[v].homogeneous()).head<3>();
-      auto* corners = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-          geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh.triangles.size()));
-      for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
-        for (int c = 0; c < 3; ++c) corners[3 * t + std::size_t(c)] = unsigned(mesh.triangles[t][c]);
-      rtcCommitGeometry(geometry);
-      rtcAttachGeometry(scene_, geometry);
-      rtcReleaseGeometry(geometry);
-    }
-    rtcCommitScene(scene_);
-  }
-  ~FlatEmbreeScene() {
-    rtcReleaseScene(scene_);
-    rtcReleaseDevice(device_);
-  }
-  FlatEmbreeScene(const FlatEmbreeScene&) = delete;
-  FlatEmbreeScene& operator=(const FlatEmbreeScene&) = delete;
-  RTCScene scene() const { return scene_; }
-
- private:
-  RTCDevice device_;
-  RTCScene scene_ = nullptr;
-};
 
 RTCRay embreeRay(const Ray& r) {
   RTCRay ray;
@@ -68,134 +32,155 @@ RTCRayHit embreeRayHit(const Ray& r) {
   return rayHit;
 }
 
-// Rays [first, first + count) of `rays` into lanes 0..count−1 of a packet of N (RTCRayN layout).
+// A packet of N rays in Embree's layout with its lane mask; lanes past `count` repeat the last ray
+// and are masked off.
 template <int N, typename Packet>
-void fillPacket(const std::vector<RTCRayHit>& rays, std::size_t first, int count, Packet* packet, int* valid) {
-  for (int i = 0; i < N; ++i) {
-    valid[i] = i < count ? -1 : 0;
-    const RTCRay& r = rays[first + std::size_t(std::min(i, count - 1))].ray;
-    packet->ray.org_x[i] = r.org_x, packet->ray.org_y[i] = r.org_y, packet->ray.org_z[i] = r.org_z;
-    packet->ray.dir_x[i] = r.dir_x, packet->ray.dir_y[i] = r.dir_y, packet->ray.dir_z[i] = r.dir_z;
-    packet->ray.tnear[i] = r.tnear, packet->ray.tfar[i] = r.tfar, packet->ray.time[i] = 0.0f;
-    packet->ray.mask[i] = 0xffffffffu, packet->ray.id[i] = unsigned(i), packet->ray.flags[i] = 0;
-    packet->hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
-    packet->hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
-  }
-}
+struct Lanes {
+  Packet packet;
+  alignas(64) int valid[N];
 
-// The best of three rounds of `trace`, each on a fresh copy of `rays` (a call writes its hits
-// into the rays it is given).
-template <typename RayType>
-double bestOfThree(const std::vector<RayType>& rays, const std::function<void(std::vector<RayType>&)>& trace) {
-  double best = std::numeric_limits<double>::infinity();
-  for (int round = 0; round < 3; ++round) {
-    std::vector<RayType> copy = rays;
-    const auto start = std::chrono::steady_clock::now();
-    trace(copy);
-    best = std::min(best, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-  }
-  return best;
-}
-
-nlohmann::json form(double seconds, double own) { return {{"seconds", seconds}, {"relative", seconds / own}}; }
-
-// Closest hits: the recorded packets of 8 one at a time or two at a time, streams, one by one.
-nlohmann::json closestForms(RTCScene target, const RayLog& log) {
-  std::vector<RTCRayHit> closest;
-  for (const Ray& r : log.closest) closest.push_back(embreeRayHit(r));
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  const auto packets = [&](std::vector<RTCRayHit>& rays, int together) {
-    std::size_t at = 0;
-    for (std::size_t call = 0; call < log.packetSizes.size(); call += std::size_t(together)) {
-      int count = 0;
-      for (int k = 0; k < together && call + std::size_t(k) < log.packetSizes.size(); ++k)
-        count += log.packetSizes[call + std::size_t(k)];
-      alignas(64) int valid[16];
-      if (together == 1) {
-        alignas(32) RTCRayHit8 packet;
-        fillPacket<8>(rays, at, count, &packet, valid);
-        rtcIntersect8(valid, target, &context, &packet);
-      } else {
-        alignas(64) RTCRayHit16 packet;
-        fillPacket<16>(rays, at, count, &packet, valid);
-        rtcIntersect16(valid, target, &context, &packet);
-      }
-      at += std::size_t(count);
-    }
-  };
-  const auto streams = [&](std::vector<RTCRayHit>& rays, RTCIntersectContextFlags flags) {
-    RTCIntersectContext streamContext;
-    rtcInitIntersectContext(&streamContext);
-    streamContext.flags = flags;
-    for (std::size_t first = 0; first < rays.size(); first += 64)
-      rtcIntersect1M(target, &streamContext, rays.data() + first,
-                     unsigned(std::min<std::size_t>(64, rays.size() - first)), sizeof(RTCRayHit));
-  };
-  using Rays = std::vector<RTCRayHit>;
-  const double own = bestOfThree<RTCRayHit>(closest, [&](Rays& r) { packets(r, 1); });
-  return {{"rays", closest.size()},
-          {"packets_of_8", form(own, own)},
-          {"packets_of_16", form(bestOfThree<RTCRayHit>(closest, [&](Rays& r) { packets(r, 2); }), own)},
-          {"coherent_streams_of_64",
-           form(bestOfThree<RTCRayHit>(closest, [&](Rays& r) { streams(r, RTC_INTERSECT_CONTEXT_FLAG_COHERENT); }), own)},
-          {"incoherent_streams_of_64",
-           form(bestOfThree<RTCRayHit>(closest, [&](Rays& r) { streams(r, RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT); }),
-                own)},
-          {"one_by_one", form(bestOfThree<RTCRayHit>(closest, [&](Rays& r) {
-                                for (RTCRayHit& ray : r) rtcIntersect1(target, &context, &ray);
-                              }),
-                              own)}};
-}
-
-void occludedPackets(RTCScene target, RTCIntersectContext* context, std::vector<RTCRay>& rays) {
-  for (std::size_t first = 0; first < rays.size(); first += 8) {
-    alignas(32) RTCRay8 packet;
-    alignas(32) int valid[8];
-    const int count = int(std::min<std::size_t>(8, rays.size() - first));
-    for (int i = 0; i < 8; ++i) {
+  Lanes(const Ray* rays, int count) {
+    for (int i = 0; i < N; ++i) {
       valid[i] = i < count ? -1 : 0;
-      const RTCRay& s = rays[first + std::size_t(std::min(i, count - 1))];
-      packet.org_x[i] = s.org_x, packet.org_y[i] = s.org_y, packet.org_z[i] = s.org_z;
-      packet.dir_x[i] = s.dir_x, packet.dir_y[i] = s.dir_y, packet.dir_z[i] = s.dir_z;
-      packet.tnear[i] = s.tnear, packet.tfar[i] = s.tfar, packet.time[i] = 0.0f;
-      packet.mask[i] = 0xffffffffu, packet.id[i] = unsigned(i), packet.flags[i] = 0;
+      const RTCRay r = embreeRay(rays[std::min(i, count - 1)]);
+      auto& ray = rayOf(packet);
+      ray.org_x[i] = r.org_x, ray.org_y[i] = r.org_y, ray.org_z[i] = r.org_z;
+      ray.dir_x[i] = r.dir_x, ray.dir_y[i] = r.dir_y, ray.dir_z[i] = r.dir_z;
+      ray.tnear[i] = r.tnear, ray.tfar[i] = r.tfar, ray.time[i] = 0.0f;
+      ray.mask[i] = r.mask, ray.id[i] = unsigned(i), ray.flags[i] = 0;
+      if constexpr (!std::is_same_v<Packet, RTCRay8>) {
+        packet.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+        packet.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+      }
     }
-    rtcOccluded8(valid, target, context, &packet);
   }
+  static auto& rayOf(Packet& p) {
+    if constexpr (std::is_same_v<Packet, RTCRay8>) return p;
+    else return p.ray;
+  }
+};
+using Closest8 = Lanes<8, RTCRayHit8>;
+using Closest16 = Lanes<16, RTCRayHit16>;
+using Shadow8 = Lanes<8, RTCRay8>;
+
+// One form of call: its input built beforehand in the layout the call takes, copied afresh before
+// each timing (a call writes its results into what it is given), and the calls over the copy.
+struct Form {
+  std::string group, name;
+  std::function<double()> timeOnce;
+};
+
+template <typename Input>
+Form form(std::string group, std::string name, Input input, std::function<void(Input&)> trace) {
+  auto prepared = std::make_shared<const Input>(std::move(input));
+  return {std::move(group), std::move(name), [prepared, trace] {
+            Input work = *prepared;
+            const auto start = std::chrono::steady_clock::now();
+            trace(work);
+            return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+          }};
 }
 
-// Shadow rays: streams of 64 (the bake's recorded streams, cut as its tracer cuts them), packets
-// of 8, one by one.
-nlohmann::json shadowForms(RTCScene target, const RayLog& log) {
-  std::vector<RTCRay> shadow;
-  for (const Ray& r : log.occlusion) shadow.push_back(embreeRay(r));
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  using Rays = std::vector<RTCRay>;
-  const double own = bestOfThree<RTCRay>(shadow, [&](Rays& r) {
-    std::size_t at = 0;
-    for (int size : log.streamSizes) {
-      for (int first = 0; first < size; first += 64)
-        rtcOccluded1M(target, &context, r.data() + at + std::size_t(first), unsigned(std::min(64, size - first)),
-                      sizeof(RTCRay));
-      at += std::size_t(size);
-    }
-  });
-  return {{"rays", shadow.size()},
-          {"streams_of_64", form(own, own)},
-          {"packets_of_8", form(bestOfThree<RTCRay>(shadow, [&](Rays& r) { occludedPackets(target, &context, r); }), own)},
-          {"one_by_one", form(bestOfThree<RTCRay>(shadow, [&](Rays& r) {
-                                for (RTCRay& ray : r) rtcOccluded1(target, &context, &ray);
-                              }),
-                              own)}};
+// The recorded packets, `together` at a time (at most 16 rays), as packets of `N` lanes.
+template <typename Packet>
+std::vector<Packet> packetsOf(const RayLog& log, int together) {
+  std::vector<Packet> packets;
+  std::size_t at = 0;
+  for (std::size_t call = 0; call < log.packetSizes.size(); call += std::size_t(together)) {
+    int count = 0;
+    for (int k = 0; k < together && call + std::size_t(k) < log.packetSizes.size(); ++k)
+      count += log.packetSizes[call + std::size_t(k)];
+    if (count > 0) packets.emplace_back(log.closest.data() + at, count);
+    at += std::size_t(count);
+  }
+  return packets;
+}
+
+std::vector<Form> closestForms(RTCScene scene, const RayLog& log) {
+  std::vector<RTCRayHit> rays;
+  for (const Ray& r : log.closest) rays.push_back(embreeRayHit(r));
+  const auto streams = [scene](RTCIntersectContextFlags flags) {
+    return [scene, flags](std::vector<RTCRayHit>& work) {
+      RTCIntersectContext context;
+      rtcInitIntersectContext(&context);
+      context.flags = flags;
+      for (std::size_t first = 0; first < work.size(); first += 64)
+        rtcIntersect1M(scene, &context, work.data() + first, unsigned(std::min<std::size_t>(64, work.size() - first)),
+                       sizeof(RTCRayHit));
+    };
+  };
+  return {form<std::vector<Closest8>>("closest", "packets_of_8", packetsOf<Closest8>(log, 1),
+                                      [scene](std::vector<Closest8>& work) {
+                                        RTCIntersectContext context;
+                                        rtcInitIntersectContext(&context);
+                                        for (Closest8& p : work) rtcIntersect8(p.valid, scene, &context, &p.packet);
+                                      }),
+          form<std::vector<Closest16>>("closest", "packets_of_16", packetsOf<Closest16>(log, 2),
+                                       [scene](std::vector<Closest16>& work) {
+                                         RTCIntersectContext context;
+                                         rtcInitIntersectContext(&context);
+                                         for (Closest16& p : work) rtcIntersect16(p.valid, scene, &context, &p.packet);
+                                       }),
+          form<std::vector<RTCRayHit>>("closest", "coherent_streams_of_64", rays,
+                                       streams(RTC_INTERSECT_CONTEXT_FLAG_COHERENT)),
+          form<std::vector<RTCRayHit>>("closest", "incoherent_streams_of_64", rays,
+                                       streams(RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT)),
+          form<std::vector<RTCRayHit>>("closest", "one_by_one", rays, [scene](std::vector<RTCRayHit>& work) {
+            RTCIntersectContext context;
+            rtcInitIntersectContext(&context);
+            for (RTCRayHit& ray : work) rtcIntersect1(scene, &context, &ray);
+          })};
+}
+
+std::vector<Form> shadowForms(RTCScene scene, const RayLog& log) {
+  std::vector<RTCRay> rays;
+  for (const Ray& r : log.occlusion) rays.push_back(embreeRay(r));
+  std::vector<Shadow8> packets;
+  for (std::size_t first = 0; first < log.occlusion.size(); first += 8)
+    packets.emplace_back(log.occlusion.data() + first, int(std::min<std::size_t>(8, log.occlusion.size() - first)));
+  const std::vector<int> sizes = log.streamSizes;
+  return {form<std::vector<RTCRay>>("shadow", "streams_of_64", rays,
+                                    [scene, sizes](std::vector<RTCRay>& work) {
+                                      // Each recorded stream cut at 64 rays, as RayTracer::occluded cuts it.
+                                      RTCIntersectContext context;
+                                      rtcInitIntersectContext(&context);
+                                      std::size_t at = 0;
+                                      for (int size : sizes) {
+                                        for (int first = 0; first < size; first += 64)
+                                          rtcOccluded1M(scene, &context, work.data() + at + std::size_t(first),
+                                                        unsigned(std::min(64, size - first)), sizeof(RTCRay));
+                                        at += std::size_t(size);
+                                      }
+                                    }),
+          form<std::vector<Shadow8>>("shadow", "packets_of_8", std::move(packets),
+                                     [scene](std::vector<Shadow8>& work) {
+                                       RTCIntersectContext context;
+                                       rtcInitIntersectContext(&context);
+                                       for (Shadow8& p : work) rtcOccluded8(p.valid, scene, &context, &p.packet);
+                                     }),
+          form<std::vector<RTCRay>>("shadow", "one_by_one", rays, [scene](std::vector<RTCRay>& work) {
+            RTCIntersectContext context;
+            rtcInitIntersectContext(&context);
+            for (RTCRay& ray : work) rtcOccluded1(scene, &context, &ray);
+          })};
 }
 
 }  // namespace
 
-nlohmann::json embreeCallForms(const Scene& scene, const RayLog& log) {
-  const FlatEmbreeScene flat(scene);
-  return {{"closest", closestForms(flat.scene(), log)}, {"shadow", shadowForms(flat.scene(), log)}};
+nlohmann::json embreeCallForms(const RayTracer& tracer, const RayLog& log) {
+  std::vector<Form> forms = closestForms(tracer.embreeScene(), log);
+  for (Form& f : shadowForms(tracer.embreeScene(), log)) forms.push_back(std::move(f));
+  // Rounds interleave the forms, so that a slow spell of a shared machine does not favour one.
+  std::vector<double> best(forms.size(), std::numeric_limits<double>::infinity());
+  for (int round = 0; round < 3; ++round)
+    for (std::size_t f = 0; f < forms.size(); ++f) best[f] = std::min(best[f], forms[f].timeOnce());
+  // The first form of each group is the bake's own.
+  std::map<std::string, std::size_t> own;
+  for (std::size_t f = 0; f < forms.size(); ++f) own.emplace(forms[f].group, f);
+  nlohmann::json out = {{"closest", {{"rays", log.closest.size()}}}, {"shadow", {{"rays", log.occlusion.size()}}}};
+  for (std::size_t f = 0; f < forms.size(); ++f)
+    out[forms[f].group][forms[f].name] = {{"seconds", best[f]}, {"relative", best[f] / best[own.at(forms[f].group)]}};
+  return out;
 }
 
 }  // namespace baker

@@ -192,7 +192,7 @@ nlohmann::json run(const Options& o) {
     replaySeconds(tracer, log);
     observer.timeEmbreeCalls(nullptr);
   }
-  out["embree_call_forms"] = embreeCallForms(scene, log);
+  out["embree_call_forms"] = embreeCallForms(tracer, log);
   constexpr double kThroughputTarget = 0.85;
   const double traced = double(stats.rays.total());
   const double bakeRate = traced / stats.traceSeconds, limitRate = traced / replay;

@@ -68,6 +68,9 @@ class RayTracer {
   // (rtcOccluded1M), any count.
   void occluded(const Ray* rays, int count, bool* blocked) const;
 
+  // The Embree scene it traces, for a benchmark that times Embree's own calls on it
+  // (bench/EmbreeCallForms): tracing goes through the calls above.
+  RTCScene embreeScene() const { return rtcScene_; }
   int instancedMeshes() const { return instancedMeshes_; }    // meshes built once and instanced
   int filteredGeometries() const { return filteredGeometries_; }  // geometries with alpha filters
 

@@ -204,7 +204,9 @@ def main():
     probes = reference["probes"]
     baker_truth, bias = truth, None
     if args.correct_pixel_bias:
-        width, height = (int(v) for v in args.res.lower().split("x"))
+        # At the size the reference was rendered at, not --res (the size of the renders timed here).
+        reference_res = reference["renderer"]["res"]
+        width, height = (int(v) for v in reference_res.lower().split("x"))
         bias = reference_pixel_bias.pixel_bias(scene, probes, width, height)
         baker_truth = [{a: [v - d for v, d in zip(t[a], b[a])] for a in AXES} for t, b in zip(truth, bias)]
 
@@ -219,7 +221,9 @@ def main():
     result = {
         "scene": args.scene, "probes": probes, "threads": args.threads, "target_relative_rmse": args.target,
         "reference": {"file": os.path.relpath(reference_path, ROOT), "cycles_bounces": args.cycles_bounces,
-                      "pixel_bias_removed_for_the_baker": bias,
+                      "pixel_bias_removed_for_the_baker": bias and {
+                          "per_probe": bias, "res": reference["renderer"]["res"],
+                          "cells": reference_pixel_bias.CELLS, "supersample": reference_pixel_bias.SUPERSAMPLE},
                       "spp_total": setting["spp_total"], "seed_to_seed_max_rel_diff": setting["seed_to_seed_max_rel_diff"]},
         "baker": {"rows": baker_rows, "at_target": baker_at, "seeds": args.seeds, "converged_rays": args.converged_rays,
                   "at_target_against_own_converged": baker_noise_at},

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """How far a reference panorama's pixel integration is from the exact direct light of small emitters.
 
-    scripts/reference_pixel_bias.py [--scene cornell_box] [--res 128x64] [--cells 200] [--supersample 8]
+    scripts/reference_pixel_bias.py [--scene cornell_box] [--res WxH] [--cells 200] [--supersample 8]
         [--baker build/baker] [--rays 262144] [--seeds 4] [--cycles-spp 0] [--json OUT.json]
 
 reference_probe.py renders each probe's panorama with a one-pixel box filter in (u, v), and
@@ -20,7 +20,9 @@ normals, the irradiance the scene's emissive triangles send straight to the prob
   baker      `baker probe --bounces 0` (direct light only) over --seeds seeds: mean and standard error;
   cycles     with --cycles-spp N > 0: reference_probe.py and panorama_sh.py themselves, on a copy of
              the scene whose surfaces reflect nothing (so only the emitters' direct light is left).
-Values are r + g + b. Scenes whose emitters are textured are refused. Needs ../shared beside the
+Values are r + g + b. Emitters follow the glTF file's sidedness (reference_probe.py renders back
+faces too, a difference of its own for single-sided emitters). Scenes whose emitters are textured,
+.glb files and buffers inside the file are refused. Needs ../shared beside the
 checkout; Cycles needs `blender` (Debian: apt-get install blender python3-numpy). Exit 0 measured,
 2 could not measure.
 """
@@ -29,6 +31,7 @@ import json
 import math
 import os
 import shutil
+import struct
 import subprocess
 import sys
 import tempfile
@@ -37,6 +40,8 @@ ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
 SHARED = os.path.join(ROOT, "..", "shared")
 AXES = {"+x": (1, 0, 0), "-x": (-1, 0, 0), "+y": (0, 1, 0), "-y": (0, -1, 0), "+z": (0, 0, 1), "-z": (0, 0, -1)}
 BLENDER = ["blender", "-b", "--factory-startup", "--python-exit-code", "3", "--python"]
+CELLS = 200  # sub-triangles per emitter edge: the integral to better than 0.01 %
+SUPERSAMPLE = 8  # points per pixel side: the sum within 0.05 % (facing the light) to 0.15 % (grazing) of 32
 
 
 def fail(message):
@@ -74,9 +79,12 @@ def node_matrix(node):
 
 
 def load_triangles(path):
-    """World-space triangles as (a, b, c, emission rgb or None, double_sided)."""
-    import struct
+    """World-space triangles as (a, b, c, emission rgb or None, double_sided), front counter-clockwise."""
+    if not path.endswith(".gltf"):
+        fail("%s: this check reads .gltf files with external buffers" % path)
     gltf = json.load(open(path))
+    if any(b.get("uri", "data:").startswith("data:") for b in gltf["buffers"]):
+        fail("%s: a buffer inside the file (data: URI); this check reads external buffers" % path)
     buffers = [open(os.path.join(os.path.dirname(path), b["uri"]), "rb").read() for b in gltf["buffers"]]
 
     def accessor(index):
@@ -95,7 +103,12 @@ def load_triangles(path):
         node = gltf["nodes"][index]
         world = mat_mul(parent, node_matrix(node))
         if "mesh" in node:
+            # A mirroring transform turns counter-clockwise corners clockwise.
+            det = sum(world[0][i] * (world[1][(i + 1) % 3] * world[2][(i + 2) % 3] -
+                                     world[1][(i + 2) % 3] * world[2][(i + 1) % 3]) for i in range(3))
             for primitive in gltf["meshes"][node["mesh"]]["primitives"]:
+                if primitive.get("mode", 4) != 4:
+                    fail("%s: a primitive of mode %d; this check reads triangles (mode 4)" % (path, primitive["mode"]))
                 material = gltf["materials"][primitive["material"]] if "material" in primitive else {}
                 if "emissiveTexture" in material:
                     fail("%s: an emissive texture; this check handles emitters of one colour" % path)
@@ -107,8 +120,9 @@ def load_triangles(path):
                 order = [i[0] for i in accessor(primitive["indices"])] if "indices" in primitive else range(len(points))
                 order = list(order)
                 for k in range(0, len(order), 3):
-                    triangles.append((points[order[k]], points[order[k + 1]], points[order[k + 2]],
-                                      emission if max(emission) > 0 else None, material.get("doubleSided", False)))
+                    a, b, c = (points[order[k + i]] for i in ((0, 1, 2) if det > 0 else (0, 2, 1)))
+                    triangles.append((a, b, c, emission if max(emission) > 0 else None,
+                                      material.get("doubleSided", False)))
         for child in node.get("children", []):
             visit(child, world)
 
@@ -193,15 +207,15 @@ def exact_direct(scene, probe, cells):
 
 def panorama_direct(scene, probe, width, height, samples):
     """What a noiseless (u, v) box-filtered panorama and panorama_sh.py's sum make of the same light."""
-    centres = [scene.triangles[k] for k in scene.emitters]
-    corners = [c[0] for c in centres] + [tuple(c[0][i] + c[1][i] for i in range(3)) for c in centres] + \
-              [tuple(c[0][i] + c[2][i] for i in range(3)) for c in centres]
+    emitters = [scene.triangles[k] for k in scene.emitters]
+    corners = [t[0] for t in emitters] + [tuple(t[0][i] + t[1][i] for i in range(3)) for t in emitters] + \
+              [tuple(t[0][i] + t[2][i] for i in range(3)) for t in emitters]
     middle = tuple(sum(p[i] for p in corners) / len(corners) for i in range(3))
     reach = max(math.sqrt(dot(sub(p, middle), sub(p, middle))) for p in corners)
     to_middle = sub(middle, probe)
     distance = math.sqrt(dot(to_middle, to_middle))
     cone = math.asin(min(1.0, reach / distance)) if distance > reach else math.pi
-    pixel = 2 * math.pi / width + math.pi / height  # more than any pixel's angular size
+    margin = 2 * math.pi / width + math.pi / height  # more than any pixel's angular size
     totals = {axis: [0.0, 0.0, 0.0] for axis in AXES}
     for row in range(height):
         th0, th1 = math.pi * row / height, math.pi * (row + 1) / height
@@ -209,7 +223,7 @@ def panorama_direct(scene, probe, width, height, samples):
         for column in range(width):
             th, ph = 0.5 * (th0 + th1), 2 * math.pi * ((column + 0.5) / width - 0.5)
             centre = (math.sin(th) * math.cos(ph), math.cos(th), math.sin(th) * math.sin(ph))
-            if math.acos(max(-1.0, min(1.0, dot(centre, to_middle) / distance))) > cone + pixel:
+            if math.acos(max(-1.0, min(1.0, dot(centre, to_middle) / distance))) > cone + margin:
                 continue
             value = [0.0, 0.0, 0.0]
             for a in range(samples):
@@ -228,7 +242,7 @@ def panorama_direct(scene, probe, width, height, samples):
     return totals
 
 
-def pixel_bias(scene_path, probes, width, height, cells=200, supersample=8):
+def pixel_bias(scene_path, probes, width, height, cells=CELLS, supersample=SUPERSAMPLE):
     """Per probe and axis, RGB: what the panorama pipeline adds to the emitters' direct light."""
     scene = Scene(load_triangles(scene_path))
     biases = []
@@ -267,6 +281,7 @@ def baker_direct(args, scene_path, probes):
 
 def cycles_direct(args, scene_path, probes):
     """reference_probe.py on a copy of the scene whose surfaces reflect nothing."""
+    # Blender's Debian build imports NumPy from the system Python.
     os.environ["PATH"] = "/usr/bin:" + os.environ.get("PATH", "")
     if shutil.which("blender") is None:
         fail("blender not found (Debian: apt-get install blender python3-numpy)")
@@ -275,8 +290,11 @@ def cycles_direct(args, scene_path, probes):
         gltf = json.load(open(scene_path))
         for material in gltf.get("materials", []):
             material.setdefault("pbrMetallicRoughness", {})["baseColorFactor"] = [0, 0, 0, 1]
-        for b in gltf["buffers"]:
-            shutil.copy(os.path.join(os.path.dirname(scene_path), b["uri"]), tmp)
+        for resource in gltf["buffers"] + gltf.get("images", []):
+            if "uri" in resource:
+                copy = os.path.join(tmp, resource["uri"])
+                os.makedirs(os.path.dirname(copy), exist_ok=True)
+                shutil.copy(os.path.join(os.path.dirname(scene_path), resource["uri"]), copy)
         black = os.path.join(tmp, "black.gltf")
         json.dump(gltf, open(black, "w"))
         renders = os.path.join(tmp, "renders")
@@ -292,9 +310,9 @@ def cycles_direct(args, scene_path, probes):
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--scene", default="cornell_box")
-    ap.add_argument("--res", default="128x64", help="the references' panorama size")
-    ap.add_argument("--cells", type=int, default=200, help="sub-triangles per emitter edge for the exact integral")
-    ap.add_argument("--supersample", type=int, default=8, help="points per pixel side for the panorama model")
+    ap.add_argument("--res", help="panorama size WxH; default: the reference's")
+    ap.add_argument("--cells", type=int, default=CELLS, help="sub-triangles per emitter edge for the exact integral")
+    ap.add_argument("--supersample", type=int, default=SUPERSAMPLE, help="points per pixel side for the panorama model")
     ap.add_argument("--baker", default=os.path.join(ROOT, "build", "baker"))
     ap.add_argument("--rays", type=int, default=262144)
     ap.add_argument("--seeds", type=int, default=4, help="baker seeds; 0 leaves the baker out")
@@ -309,8 +327,10 @@ def main():
             fail("missing %s: the scenes and references live in ../shared beside the checkout" % path)
     if args.seeds > 0 and not os.access(args.baker, os.X_OK):
         fail("no baker at %s (build it, or pass --baker, or --seeds 0)" % args.baker)
+    reference = json.load(open(reference_path))
+    args.res = args.res or reference["renderer"]["res"]
     width, height = (int(v) for v in args.res.lower().split("x"))
-    probes = json.load(open(reference_path))["probes"]
+    probes = reference["probes"]
     scene = Scene(load_triangles(scene_path))
     if not scene.emitters:
         fail("%s has no emissive triangles" % scene_path)

@@ -146,11 +146,12 @@ TEST(DirectView, EachSeedTracesItsOwnLattice) {
 
 // A probe under a small bright rectangle, part of which a wall beside the probe hides (as the
 // tall block hides a corner of the Cornell box's light from its centre probe): the direct
-// irradiance on the six axes and a tilted normal, over sixteen seeds of 4096 rays (within 0.2 % and three standard errors), against the integral over
-// the rectangle of L·max(0, n·ω)·|cos θ_light|/r², each of its 512² cells seen or hidden from
-// its centre by this test's own ray-triangle test. Edges of the light cross the horizon of four
-// of the normals, where a panorama's pixels count an edge's pole side for more than its solid
-// angle (docs/SAMPLING.md): the estimate must not.
+// irradiance on the six axes and a tilted normal, over sixteen seeds of 8192 rays, against the
+// integral over the rectangle of L·max(0, n·ω)·cos θ_light/r², each of its 512² cells seen or
+// hidden from its centre by this test's own ray-triangle test. Every normal must agree within
+// 0.2 % plus three standard errors; the two that face the light, whose estimates are precise,
+// within 0.45 % at most: an excess like the Cycles reference's pixels give the Cornell light
+// (0.6 %, docs/ACCURACY.md) would fail there.
 TEST(DirectView, APartlyHiddenSmallEmitterMatchesTheExactIntegral) {
   constexpr double kHeight = 2.0, kX0 = -0.65, kX1 = 0.65, kZ0 = -0.5, kZ1 = 0.55;
   const Eigen::Vector3d emission(17.0, 12.0, 4.0);
@@ -162,13 +163,12 @@ TEST(DirectView, APartlyHiddenSmallEmitterMatchesTheExactIntegral) {
                                         Eigen::Vector3d(kX1, kHeight, kZ1), Eigen::Vector3d(kX0, kHeight, kZ1)})
     mesh.positions.push_back(corner.cast<float>());
   for (const Eigen::Vector3d& corner : wall) mesh.positions.push_back(corner.cast<float>());
-  mesh.triangles = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}};  // the light faces down
+  mesh.triangles = {{0, 1, 2}, {0, 2, 3}, {4, 5, 6}, {4, 6, 7}};  // the light's front faces down
   mesh.triangleMaterial = {0, 0, 1, 1};
   mesh.alphaTestedBegin = 4;
   Material light, black;
   light.emission = emission.cast<float>();
   light.baseColor = {0.0f, 0.0f, 0.0f, 1.0f};
-  light.doubleSided = true;
   black.baseColor = {0.0f, 0.0f, 0.0f, 1.0f};
   scene.materials = {light, black};
   scene.meshes.push_back(mesh);
@@ -211,7 +211,7 @@ TEST(DirectView, APartlyHiddenSmallEmitterMatchesTheExactIntegral) {
   std::vector<std::vector<double>> values(normals.size());
   for (std::uint64_t seed = 1; seed <= 16; ++seed) {
     BakeSettings settings;
-    settings.rays = 4096;
+    settings.rays = 8192;
     settings.transport.bounces = 0;
     settings.transport.seed = seed;
     const ProbeSamples samples = bakeSamples(scene, tracer, settings, {0, 0, 0})[0];
@@ -226,7 +226,8 @@ TEST(DirectView, APartlyHiddenSmallEmitterMatchesTheExactIntegral) {
       continue;
     }
     EXPECT_NEAR(s.mean, expected, 0.002 * expected + 3.0 * s.standardError) << "normal " << k;
-    EXPECT_LT(s.standardError, 0.005 * expected) << "normal " << k;
+    const bool facesTheLight = normals[k].y() > 0.25;
+    EXPECT_LT(3.0 * s.standardError, (facesTheLight ? 0.0025 : 0.015) * expected) << "normal " << k;
   }
 }
 
