@@ -35,8 +35,8 @@
 #include <vector>
 
 #include "bake/BakeJob.h"
-#include "bench/EmbreeCallForms.h"
 #include "bake/PathIntegrator.h"
+#include "bench/EmbreeCallForms.h"
 #include "cli/CommandLine.h"
 #include "common/Error.h"
 #include "common/Timing.h"
