@@ -42,32 +42,12 @@ import argparse
 import json
 import math
 import os
-import shutil
-import subprocess
-import sys
 import tempfile
 
 import reference_pixel_bias
+from probe_runs import ROOT, SHARED, TOOLS, baker_axes, cycles_axes, fail, lower_keys, require_blender, run
 
-ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
-SHARED = os.path.join(ROOT, "..", "shared")
 AXES = ["+x", "-x", "+y", "-y", "+z", "-z"]
-REFERENCE_PROBE = os.path.join(SHARED, "tools", "reference_probe.py")
-PANORAMA_SH = os.path.join(SHARED, "tools", "panorama_sh.py")
-BLENDER = ["blender", "-b", "--factory-startup", "--python-exit-code", "3", "--python"]
-
-
-def fail(message):
-    print("cycles_time_to_error.py: " + message, file=sys.stderr)
-    sys.exit(2)
-
-
-def run(command, capture=True):
-    result = subprocess.run(command, stdout=subprocess.PIPE if capture else subprocess.DEVNULL,
-                            stderr=subprocess.PIPE, text=True)
-    if result.returncode != 0:
-        fail("'%s' failed (%d): %s" % (" ".join(command[:3]), result.returncode, result.stderr.strip()[-2000:]))
-    return result.stdout
 
 
 def probe_error(measured, reference):
@@ -78,29 +58,16 @@ def probe_error(measured, reference):
     return rmse / (sum(want) / len(AXES))
 
 
-def lower_keys(axes):
-    return {k.lower(): v for k, v in axes.items()}
-
-
 def seed_rms(errors_by_seed):
     """Per probe: the RMS over seeds of its error."""
     probes = len(errors_by_seed[0])
     return [math.sqrt(sum(e[p] ** 2 for e in errors_by_seed) / len(errors_by_seed)) for p in range(probes)]
 
 
-def baker_probes(args, scene, probes, bounces, rays, seed):
-    """The baker's axis irradiance at the probes, from its samples."""
-    command = [args.baker, "probe", scene, "--rays", str(rays), "--bounces", str(bounces), "--no", "direct-punctual",
-               "--seed", str(seed), "--threads", str(args.threads), "--json"]
-    for p in probes:
-        command.append("--at=%r,%r,%r" % tuple(p))
-    return [lower_keys(pr["irradiance_from_samples"]) for pr in json.loads(run(command))["probes"]]
-
-
 def baker_row(args, scene, probes, reference, converged, bounces, rays):
     errors, noise = [], []
     for seed in range(args.seeds):
-        measured = baker_probes(args, scene, probes, bounces, rays, seed)
+        measured = baker_axes(args.baker, scene, probes, rays, bounces, seed, args.threads)
         errors.append([probe_error(m, ref) for m, ref in zip(measured, reference)])
         noise.append([probe_error(m, ref) for m, ref in zip(measured, converged)])
     with tempfile.TemporaryDirectory() as tmp:
@@ -117,18 +84,9 @@ def baker_row(args, scene, probes, reference, converged, bounces, rays):
 def cycles_row(args, scene, probes, reference, bounces, spp):
     errors, seconds = [], []
     for k in range(args.cycles_seeds):
-        with tempfile.TemporaryDirectory() as tmp:
-            command = BLENDER + [REFERENCE_PROBE, "--", scene, "--res", args.res, "--spp", str(spp), "--bounces",
-                                 str(bounces), "--seed", str(101 + k), "--threads", str(args.threads), "--out", tmp]
-            for p in probes:
-                command.append("--probe=%r,%r,%r" % tuple(p))
-            run(command, capture=False)
-            irradiance = os.path.join(tmp, "irradiance.json")
-            run(BLENDER + [PANORAMA_SH, "--", tmp, "--json", irradiance], capture=False)
-            panoramas = sorted(json.load(open(irradiance)), key=lambda entry: entry["file"])
-            timing = json.load(open(os.path.join(tmp, "probes.json")))["probes"]
-        errors.append([probe_error(lower_keys(pan["irradiance_axes"]), ref) for pan, ref in zip(panoramas, reference)])
-        seconds += [entry["seconds"] for entry in timing]
+        measured, render_seconds = cycles_axes(scene, probes, args.res, spp, bounces, 101 + k, args.threads)
+        errors.append([probe_error(m, ref) for m, ref in zip(measured, reference)])
+        seconds += render_seconds
     per_probe = seed_rms(errors)
     return {"spp": spp, "res": args.res, "probe_relative_rmse": per_probe, "worst_probe_relative_rmse": max(per_probe),
             "seconds_per_probe": sum(seconds) / len(seconds)}
@@ -184,13 +142,10 @@ def main():
 
     reference_path = os.path.join(SHARED, "data", "reference", args.scene + ".json")
     scene = os.path.join(SHARED, "data", "scenes", args.scene, args.scene + ".gltf")
-    for path in (reference_path, scene, REFERENCE_PROBE, PANORAMA_SH):
+    for path in (reference_path, scene, os.path.join(TOOLS, "reference_probe.py"), os.path.join(TOOLS, "panorama_sh.py")):
         if not os.path.exists(path):
             fail("missing %s: the scenes, references and tools live in ../shared beside the checkout" % path)
-    # Blender's Debian build imports NumPy from the system Python.
-    os.environ["PATH"] = "/usr/bin:" + os.environ.get("PATH", "")
-    if shutil.which("blender") is None:
-        fail("blender not found (Debian: apt-get install blender python3-numpy)")
+    require_blender()
     if not os.access(args.baker, os.X_OK):
         fail("no baker at %s (build it, or pass --baker)" % args.baker)
     reference = json.load(open(reference_path))
@@ -211,7 +166,7 @@ def main():
         baker_truth = [{a: [v - d for v, d in zip(t[a], b[a])] for a in AXES} for t, b in zip(truth, bias)]
 
     # The baker's own converged answer (another seed), against which its error is noise alone.
-    converged = baker_probes(args, scene, probes, setting["baker_bounces"], args.converged_rays, 1000)
+    converged = baker_axes(args.baker, scene, probes, args.converged_rays, setting["baker_bounces"], 1000, args.threads)
     baker_rows = [baker_row(args, scene, probes, baker_truth, converged, setting["baker_bounces"], r) for r in sorted(args.rays)]
     cycles_rows = [cycles_row(args, scene, probes, truth, args.cycles_bounces, s) for s in sorted(args.spp)]
     baker_at = time_to_target(baker_rows, args.target, "rays")

@@ -32,21 +32,13 @@ import math
 import os
 import shutil
 import struct
-import subprocess
-import sys
 import tempfile
 
-ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
-SHARED = os.path.join(ROOT, "..", "shared")
+from probe_runs import ROOT, SHARED, baker_axes, cycles_axes, fail, require_blender
+
 AXES = {"+x": (1, 0, 0), "-x": (-1, 0, 0), "+y": (0, 1, 0), "-y": (0, -1, 0), "+z": (0, 0, 1), "-z": (0, 0, -1)}
-BLENDER = ["blender", "-b", "--factory-startup", "--python-exit-code", "3", "--python"]
 CELLS = 200  # sub-triangles per emitter edge: the integral to better than 0.01 %
 SUPERSAMPLE = 8  # points per pixel side: the sum within 0.05 % (facing the light) to 0.15 % (grazing) of 32
-
-
-def fail(message):
-    print("reference_pixel_bias.py: " + message, file=sys.stderr)
-    sys.exit(2)
 
 
 def sub(a, b):
@@ -253,20 +245,11 @@ def pixel_bias(scene_path, probes, width, height, cells=CELLS, supersample=SUPER
     return biases
 
 
-def run(command):
-    result = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    if result.returncode != 0:
-        fail("'%s' failed (%d): %s" % (" ".join(command[:3]), result.returncode, result.stderr.strip()[-2000:]))
-    return result.stdout
-
-
 def baker_direct(args, scene_path, probes):
     per_seed = []
     for seed in range(1, args.seeds + 1):
-        command = [args.baker, "probe", scene_path, "--rays", str(args.rays), "--bounces", "0", "--no",
-                   "direct-punctual", "--seed", str(seed), "--json"] + ["--at=%r,%r,%r" % tuple(p) for p in probes]
-        per_seed.append([{k.lower(): sum(v) for k, v in probe["irradiance_from_samples"].items()}
-                         for probe in json.loads(run(command))["probes"]])
+        per_seed.append([{axis: sum(rgb) for axis, rgb in probe.items()}
+                         for probe in baker_axes(args.baker, scene_path, probes, args.rays, 0, seed)])
     out = []
     for p in range(len(probes)):
         entry = {}
@@ -281,11 +264,7 @@ def baker_direct(args, scene_path, probes):
 
 def cycles_direct(args, scene_path, probes):
     """reference_probe.py on a copy of the scene whose surfaces reflect nothing."""
-    # Blender's Debian build imports NumPy from the system Python.
-    os.environ["PATH"] = "/usr/bin:" + os.environ.get("PATH", "")
-    if shutil.which("blender") is None:
-        fail("blender not found (Debian: apt-get install blender python3-numpy)")
-    tools = os.path.join(SHARED, "tools")
+    require_blender()
     with tempfile.TemporaryDirectory() as tmp:
         gltf = json.load(open(scene_path))
         for material in gltf.get("materials", []):
@@ -297,15 +276,8 @@ def cycles_direct(args, scene_path, probes):
                 shutil.copy(os.path.join(os.path.dirname(scene_path), resource["uri"]), copy)
         black = os.path.join(tmp, "black.gltf")
         json.dump(gltf, open(black, "w"))
-        renders = os.path.join(tmp, "renders")
-        run(BLENDER + [os.path.join(tools, "reference_probe.py"), "--", black, "--res", args.res, "--spp",
-                       str(args.cycles_spp), "--bounces", "0", "--seed", "5", "--out", renders] +
-            ["--probe=%r,%r,%r" % tuple(p) for p in probes])
-        irradiance = os.path.join(tmp, "irradiance.json")
-        run(BLENDER + [os.path.join(tools, "panorama_sh.py"), "--", renders, "--json", irradiance])
-        panoramas = sorted(json.load(open(irradiance)), key=lambda entry: entry["file"])
-    return [{k.lower(): sum(v) for k, v in pan["irradiance_axes"].items()} for pan in panoramas]
-
+        irradiance, _ = cycles_axes(black, probes, args.res, args.cycles_spp, 0, 5)
+    return [{axis: sum(rgb) for axis, rgb in probe.items()} for probe in irradiance]
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
