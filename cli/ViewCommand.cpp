@@ -28,16 +28,20 @@ int runViewCommand(int argc, char** argv) {
                     ->check(CLI::Range(0, 65535));
   app.add_flag("--json", json, "print what was written as JSON on stdout");
   return runGuarded("baker view", app, argc, argv, [&]() {
-    const Volume volume = readVolume(volumePath);
+    const AdaptiveVolume levels = readLevels(volumePath);
+    const Volume& volume = levels.coarsest();
     const std::string scene = sceneOfVolume(volume, volumePath, gltf);
-    writeViewerPage(volume, {volumePath, scene, out});
+    writeViewerPage(levels, {volumePath, scene, out});
+    std::int64_t probes = 0;
+    for (const Volume& level : levels.levels) probes += level.rows.count(level.grid);
     if (json) {
-      std::cout << nlohmann::json({{"page", out}, {"volume", volumePath}, {"scene", scene.empty() ? nlohmann::json(nullptr) : nlohmann::json(scene)}, {"basis", volume.basisName}, {"probes", volume.grid.probeCount()}}).dump(2) << "\n";
+      std::cout << nlohmann::json({{"page", out}, {"volume", volumePath}, {"scene", scene.empty() ? nlohmann::json(nullptr) : nlohmann::json(scene)}, {"basis", volume.basisName}, {"levels", levels.levels.size()}, {"probes", probes}}).dump(2) << "\n";
     } else {
-      std::cout << fmt::format("wrote {} ({} probes of {}{}): open {}/index.html through a local server, or "
+      std::cout << fmt::format("wrote {} ({} probes{} of {}{}): open {}/index.html through a local server, or "
                                "use --serve\n",
-                               out, volume.grid.probeCount(), volume.basisName,
-                               scene.empty() ? ", no scene: pass --gltf" : ", scene " + scene, out);
+                               out, probes,
+                               levels.levels.size() > 1 ? fmt::format(" in {} levels", levels.levels.size()) : "",
+                               volume.basisName, scene.empty() ? ", no scene: pass --gltf" : ", scene " + scene, out);
     }
     if (!serve->count()) return 0;
     servePage(out, port, [&](const std::string& url) {

@@ -36,31 +36,52 @@ void appendLittleEndian(std::string& bytes, const T* values, std::size_t count) 
   }
 }
 
-// volume.bin: coefficients, then visibility, then states (one int32 each), then offsets (three
-// floats each); volume.json says where each begins.
-std::string binaryOf(const Volume& v, nlohmann::json& layout) {
-  std::string bytes;
-  const std::size_t probes = std::size_t(v.grid.probeCount());
+// volume.bin, level after level: the probes the level holds, one row each in the level's row
+// order (ProbeRows), as coefficients, visibility, states (one int32 each), offsets (three floats
+// each) and, for a level that holds only some bricks, each row's probe index on the level's grid.
+// The level's "sections" say where each begins.
+nlohmann::json appendLevel(const Volume& v, int level, std::string& bytes) {
+  const std::size_t rows = std::size_t(v.rows.count(v.grid));
+  nlohmann::json sections = nlohmann::json::object();
   const auto section = [&](const char* name, std::size_t count) {
-    layout[name] = {{"byte_offset", bytes.size()}, {"count", count}};
+    sections[name] = {{"byte_offset", bytes.size()}, {"count", count}};
   };
   section("coefficients", v.coefficients.size());
   appendLittleEndian(bytes, v.coefficients.data(), v.coefficients.size());
   section("visibility", v.visibility.size());
   appendLittleEndian(bytes, v.visibility.data(), v.visibility.size());
-  std::vector<std::int32_t> states(probes, std::int32_t(ProbeState::Valid));
-  for (std::size_t p = 0; p < v.states.size(); ++p) states[p] = std::int32_t(v.states[p]);
+  std::vector<std::int32_t> states(rows, std::int32_t(ProbeState::Valid));
+  for (std::size_t r = 0; r < v.states.size(); ++r) states[r] = std::int32_t(v.states[r]);
   section("states", states.size());
   appendLittleEndian(bytes, states.data(), states.size());
-  std::vector<float> offsets(3 * probes, 0.0f);
-  for (std::size_t p = 0; p < v.offsets.size(); ++p)
-    for (int a = 0; a < 3; ++a) offsets[3 * p + a] = v.offsets[p][a];
+  std::vector<float> offsets(3 * rows, 0.0f);
+  for (std::size_t r = 0; r < v.offsets.size(); ++r)
+    for (int a = 0; a < 3; ++a) offsets[3 * r + a] = v.offsets[r][a];
   section("offsets", offsets.size());
   appendLittleEndian(bytes, offsets.data(), offsets.size());
-  return bytes;
+  nlohmann::json heldSubBricks = nullptr;
+  if (!v.rows.holdsEveryProbe()) {
+    std::vector<std::int32_t> probes(rows);
+    for (std::size_t r = 0; r < rows; ++r) probes[r] = std::int32_t(v.rows.probeAt(v.grid, std::int64_t(r)));
+    section("probes", probes.size());
+    appendLittleEndian(bytes, probes.data(), probes.size());
+    heldSubBricks = nlohmann::json::array();
+    for (std::int64_t b = 0; b < v.grid.brickCount(); ++b) heldSubBricks.push_back(int(v.rows.subBricks(v.grid, b)));
+  }
+  const ProbeGrid& g = v.grid;
+  return {{"level", level},
+          {"origin", {g.origin.x(), g.origin.y(), g.origin.z()}},
+          {"spacing", g.spacing},
+          {"dims", {g.dims.x(), g.dims.y(), g.dims.z()}},
+          {"rows", rows},
+          // Per brick of 8³ (x fastest), a bit per sub-brick of 4³ held; null: every probe.
+          {"sub_bricks_held", heldSubBricks},
+          {"sections", sections}};
 }
 
-nlohmann::json describe(const Volume& v, const ViewerPage& page, const std::string& sceneUrl, nlohmann::json layout) {
+nlohmann::json describe(const AdaptiveVolume& levels, const ViewerPage& page, const std::string& sceneUrl,
+                        nlohmann::json levelLayouts) {
+  const Volume& v = levels.coarsest();
   const std::unique_ptr<Basis> basis = basisOf(v);
   const nlohmann::json metadata = describingMetadataJson(v, *basis);
   const ProbeGrid& g = v.grid;
@@ -68,18 +89,18 @@ nlohmann::json describe(const Volume& v, const ViewerPage& page, const std::stri
           {"volume", std::filesystem::path(page.volumePath).filename().string()},
           {"basis", v.basisName},
           {"reconstruction", reconstructionData(*basis, storedSignalOf(v.settings))},
+          // The coarsest level's grid, which spans the volume's box.
           {"dims", {g.dims.x(), g.dims.y(), g.dims.z()}},
           {"origin", {g.origin.x(), g.origin.y(), g.origin.z()}},
           {"spacing", g.spacing},
           {"coefficients_per_probe", v.coefficientsPerProbe},
           {"visibility_per_probe", v.visibilityPerProbe},
           {"probe_states", v.hasProbeStates()},
-          // One level until volumes are adaptive: the page lists what there is.
-          {"levels", nlohmann::json::array({{{"level", 0}, {"spacing", g.spacing}}})},
+          {"levels", std::move(levelLayouts)},
           {"units", "irradiance E(n) = integral of L(w) max(0, n.w) dw, in the scene's radiance units times "
                     "steradians"},
           {"scene", sceneUrl.empty() ? nlohmann::json(nullptr) : nlohmann::json(sceneUrl)},
-          {"binary", {{"file", "volume.bin"}, {"sections", layout}}},
+          {"binary", {{"file", "volume.bin"}}},
           {"metadata", metadata}};
 }
 
@@ -125,9 +146,9 @@ std::string viewerBundleDirectory() {
                                        looked));
 }
 
-void writeViewerPage(const Volume& volume, const ViewerPage& page) {
+void writeViewerPage(const AdaptiveVolume& levels, const ViewerPage& page) {
   // The page shades with the browser decoder, which reconstructs irradiance volumes.
-  if (storedSignalOf(volume.settings) == StoredSignal::Radiance)
+  if (storedSignalOf(levels.coarsest().settings) == StoredSignal::Radiance)
     throw InputError(fmt::format("{}: holds radiance (setting signal), which the viewer's decoder does not "
                                  "reconstruct; view a bake of the same scene whose signal is irradiance",
                                  page.volumePath));
@@ -136,9 +157,11 @@ void writeViewerPage(const Volume& volume, const ViewerPage& page) {
   const std::filesystem::path dir = out.temporaryPath();
   for (const char* file : kBundleFiles) std::filesystem::copy_file(std::filesystem::path(bundle) / file, dir / file);
   const std::string sceneUrl = page.scenePath.empty() ? "" : copyScene(page.scenePath, (dir / "scene").string());
-  nlohmann::json layout = nlohmann::json::object();
-  out.writeFile("volume.bin", binaryOf(volume, layout));
-  out.writeFile(kPageMarker, describe(volume, page, sceneUrl, layout).dump(1) + "\n");
+  std::string bytes;
+  nlohmann::json levelLayouts = nlohmann::json::array();
+  for (std::size_t l = 0; l < levels.levels.size(); ++l) levelLayouts.push_back(appendLevel(levels.levels[l], int(l), bytes));
+  out.writeFile("volume.bin", bytes);
+  out.writeFile(kPageMarker, describe(levels, page, sceneUrl, std::move(levelLayouts)).dump(1) + "\n");
   out.commit();
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 #include <string>
 
+#include "volume/AdaptiveVolume.h"
 #include "volume/Volume.h"
 
 namespace baker {
@@ -8,8 +9,9 @@ namespace baker {
 // What `baker view` writes: a directory any browser opens as it is (or through a local server),
 // with
 //  - index.html and viewer.js: the page, three.js bundled into it at build time (web/viewer/);
-//  - volume.json and volume.bin: the volume's grid, basis and metadata, and its values
-//    (coefficients, sky visibility, probe states, offsets) as little-endian binary;
+//  - volume.json and volume.bin: the volume's levels (one for a uniform volume), basis and
+//    metadata, and each level's values (coefficients, sky visibility, probe states, offsets) for
+//    the probes it holds, as little-endian binary;
 //  - scene/: the glTF scene with the files it refers to, when there is one.
 // The directory appears only when complete, and replaces only a page this tool wrote.
 struct ViewerPage {
@@ -24,7 +26,7 @@ std::string sceneOfVolume(const Volume& volume, const std::string& volumePath, c
 
 // Writes the page. InputError naming the file for a scene it cannot copy or an output it must not
 // replace; std::runtime_error when the page's bundle is missing from this installation.
-void writeViewerPage(const Volume& volume, const ViewerPage& page);
+void writeViewerPage(const AdaptiveVolume& levels, const ViewerPage& page);
 
 // Where the built page (index.html, viewer.js) is: $BAKER_VIEWER_DIR, else viewer/ beside the
 // executable, else the build tree's. std::runtime_error naming where it looked.

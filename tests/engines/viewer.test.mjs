@@ -34,7 +34,8 @@ try {
 	const info = await page.evaluate( () => window.viewer.info );
 	const [ nx, ny, nz ] = info.dims;
 	const states = await page.evaluate( () => fetch( 'volume.bin' ).then( ( r ) => r.arrayBuffer() ).then( ( b ) => Array.from( new Int32Array( b ) ) ) );
-	const stateOf = ( [ i, j, k ] ) => states[ info.binary.sections.states.byte_offset / 4 + i + nx * ( j + ny * k ) ];
+	check( info.levels.length === 1 && info.levels[ 0 ].sub_bricks_held === null, `a uniform volume is one level holding every probe: ${ JSON.stringify( info.levels.map( ( l ) => l.rows ) ) }` );
+	const stateOf = ( [ i, j, k ] ) => states[ info.levels[ 0 ].sections.states.byte_offset / 4 + i + nx * ( j + ny * k ) ];
 	// Three valid probes, each seen from its own side, at an exposure that shows its brightest
 	// channel at 0.8 (8-bit sRGB steps stay well under 1 % there).
 	const valid = [];
@@ -115,6 +116,8 @@ if ( address ) {
 }
 served.kill();
 
+await checkAdaptivePage();
+
 // A damaged volume: the reader's message, exit 2, no page.
 fs.writeFileSync( path.join( dir, 'damaged.vdb' ), fs.readFileSync( path.join( dir, 'room.vdb' ) ).subarray( 0, 400 ) );
 const damaged = runBaker( [ 'view', 'damaged.vdb', '--out', 'damaged_page' ], dir );
@@ -122,3 +125,83 @@ check( damaged.code === 2 && damaged.stderr.includes( 'damaged.vdb' ) && ! fs.ex
 const foreign = runBaker( [ 'view', 'page', '--out', 'foreign_page' ], dir );
 check( foreign.code === 2 && ! fs.existsSync( path.join( dir, 'foreign_page' ) ), `a directory that is no volume: exit ${ foreign.code }, ${ foreign.stderr.trim() }` );
 finish( 'viewer' );
+
+// An adaptive volume of the window room, whose finest level holds only some of its sub-bricks: a
+// level's sphere shows that level's probe as baker sample reads it at the probe; a click reads
+// the level baker sample reads, coarse or fine; a level's checkbox hides its spheres.
+async function checkAdaptivePage() {
+	const adaptive = freshDirectory( 'viewer-adaptive' );
+	for ( const file of [ 'window_room.gltf', 'window_room.bin', 'window_room_floor.png' ] ) fs.copyFileSync( path.join( sourceDir, 'data/window_room', file ), path.join( adaptive, file ) );
+	bake( [ 'window_room.gltf', '--placement', 'adaptive', '--basis', 'sh-l2', '--rays', '128', '--seed', '1', '--sky', '1,1,1', '--out', 'room.vdb' ], adaptive );
+	const volume = path.join( adaptive, 'room.vdb' );
+	const viewed = runBaker( [ 'view', 'room.vdb', '--out', 'page', '--json' ], adaptive );
+	check( viewed.code === 0 && JSON.parse( viewed.stdout || '{}' ).levels === 3, `baker view of an adaptive volume: exit ${ viewed.code }, ${ viewed.stdout } ${ viewed.stderr }` );
+	if ( viewed.code !== 0 ) return;
+	const { server, url } = await serve( null, { '/': path.join( adaptive, 'page' ) } );
+	const { browser, page, errors } = await openPage( url, { width: 1024, height: 640 } );
+	try {
+		await page.waitForFunction( 'window.viewerReady === true || document.getElementById( "summary" ).textContent.startsWith( "cannot" )', { timeout: 90000 } ).catch( () => {} );
+		check( await page.evaluate( () => window.viewerReady === true ), `the adaptive page is ready (errors: ${ errors.join( '; ' ) })` );
+		const info = await page.evaluate( () => window.viewer.info );
+		const finest = info.levels.length - 1, level = info.levels[ finest ];
+		check( level.sub_bricks_held !== null && level.rows < level.dims[ 0 ] * level.dims[ 1 ] * level.dims[ 2 ], `the finest level holds some probes only: ${ level.rows } of ${ level.dims }` );
+		const bytes = await page.evaluate( () => fetch( 'volume.bin' ).then( ( r ) => r.arrayBuffer() ).then( ( b ) => Array.from( new Int32Array( b ) ) ) );
+		const rowsOf = ( name ) => bytes.slice( level.sections[ name ].byte_offset / 4, level.sections[ name ].byte_offset / 4 + level.sections[ name ].count );
+		const [ states, probes ] = [ rowsOf( 'states' ), rowsOf( 'probes' ) ];
+		const [ nx, ny ] = level.dims;
+		const ijkOf = ( p ) => [ p % nx, Math.floor( p / nx ) % ny, Math.floor( p / ( nx * ny ) ) ];
+		const valid = probes.filter( ( p, r ) => states[ r ] === 1 ).map( ijkOf );
+		const shown = [ valid[ Math.floor( valid.length / 3 ) ], valid[ Math.floor( 2 * valid.length / 3 ) ] ];
+		for ( const ijk of shown ) {
+			const position = ijk.map( ( i, a ) => level.origin[ a ] + level.spacing * i ), towards = [ 0.3, 0.5, 0.8 ];
+			const normal = towards.map( ( v ) => v / Math.hypot( ...towards ) );
+			const expected = sample( volume, position, normal );
+			const brightest = Math.max( ...expected.irradiance );
+			check( expected.level === finest && brightest > 0, `baker sample reads the finest level at its probe ${ ijk }: level ${ expected.level }, E ${ expected.irradiance }` );
+			await page.evaluate( ( stops ) => window.viewer.setOption( 'exposure', stops ), Math.log2( 0.8 * Math.PI / brightest ) );
+			const shot = await page.evaluate( ( ijk, towards, l ) => window.viewer.captureProbe( ijk, towards, l ), ijk, towards, finest );
+			const rendered = [ 0, 1, 2 ].map( ( c ) => shot.pixels.reduce( ( sum, p ) => sum + srgbToLinear( p[ c ] ), 0 ) / 4 * Math.PI / shot.exposure );
+			check( rendered.every( ( r, c ) => Math.abs( r - expected.irradiance[ c ] ) <= 0.02 * brightest ), `level ${ finest } probe ${ ijk }: rendered ${ rendered }, baker sample ${ expected.irradiance }` );
+			console.log( `adaptive: level ${ finest } probe ${ ijk }: page E = (${ rendered.map( ( v ) => v.toFixed( 4 ) ) }), baker sample E = (${ expected.irradiance.map( ( v ) => v.toFixed( 4 ) ) }); largest difference ${ ( 100 * Math.max( ...rendered.map( ( r, c ) => Math.abs( r - expected.irradiance[ c ] ) ) ) / brightest ).toFixed( 2 ) } % of the brightest channel` );
+			await page.evaluate( ( l ) => window.viewer.setOption( `level-${ l }`, false ), finest );
+			const without = await page.evaluate( ( ijk, towards, l ) => window.viewer.captureProbe( ijk, towards, l ), ijk, towards, finest );
+			await page.evaluate( ( l ) => window.viewer.setOption( `level-${ l }`, true ), finest );
+			check( without.pixels[ 0 ].join() !== shot.pixels[ 0 ].join(), `unticking level ${ finest } hides its sphere at ${ ijk }: ${ without.pixels[ 0 ] }` );
+		}
+		// Points across the box, and at the middle of each sub-brick the finest level leaves out
+		// (read at a coarser level); three read at each level baker sample reads them at.
+		const candidates = [];
+		const at = ( ijk ) => ijk.map( ( i, a ) => level.origin[ a ] + level.spacing * i );
+		for ( let n = 0; n < 24; ++ n ) {
+			const f = [ ( n % 4 + 0.37 ) / 4, ( Math.floor( n / 4 ) % 3 + 0.61 ) / 3, ( Math.floor( n / 12 ) + 0.29 ) / 2 ];
+			candidates.push( at( f.map( ( x, a ) => x * ( level.dims[ a ] - 1 ) ) ) );
+		}
+		const bricks = level.dims.map( ( d ) => Math.ceil( d / 8 ) );
+		level.sub_bricks_held.forEach( ( mask, b ) => {
+			const corner = [ b % bricks[ 0 ], Math.floor( b / bricks[ 0 ] ) % bricks[ 1 ], Math.floor( b / ( bricks[ 0 ] * bricks[ 1 ] ) ) ].map( ( x ) => 8 * x );
+			for ( let sub = 0; sub < 8; ++ sub ) {
+				const middle = corner.map( ( c, a ) => c + 4 * ( ( sub >> a ) & 1 ) + 1.5 );
+				if ( ! ( ( mask >> sub ) & 1 ) && middle.every( ( x, a ) => x < level.dims[ a ] - 1 ) ) candidates.push( at( middle ) );
+			}
+		} );
+		const levelOf = candidates.map( ( point ) => ( { point, level: sample( volume, point, [ 0, 1, 0 ] ).level } ) );
+		const levelsRead = new Set( levelOf.map( ( c ) => c.level ) );
+		console.log( `adaptive: picks at levels ${ [ ...levelsRead ].sort() } (${ [ ...levelsRead ].sort().map( ( l ) => levelOf.filter( ( c ) => c.level === l ).length ).join( ', ' ) } of the ${ levelOf.length } points)` );
+		for ( const l of levelsRead ) {
+			for ( const { point } of levelOf.filter( ( c ) => c.level === l ).slice( 0, 3 ) ) {
+				const picked = await page.evaluate( ( p ) => window.viewer.pick( p ), point );
+				for ( const [ name, e ] of Object.entries( picked.irradiance ) ) {
+					const normal = [ 0, 0, 0 ];
+					normal[ { X: 0, Y: 1, Z: 2 }[ name[ 1 ] ] ] = name[ 0 ] === '-' ? - 1 : 1;
+					const expected = sample( volume, point, normal ).irradiance;
+					check( e.every( ( v, c ) => Math.abs( v - expected[ c ] ) <= 1e-5 * Math.max( 1, Math.abs( expected[ c ] ) ) ), `adaptive pick ${ point } ${ name } (level ${ l }): ${ e } against ${ expected }` );
+				}
+			}
+		}
+		check( levelsRead.has( finest ) && levelsRead.size >= 2, `the points are read at more than one level, the finest among them: ${ [ ...levelsRead ] }` );
+		check( errors.length === 0, `adaptive page console errors: ${ errors.join( '; ' ) }` );
+	} finally {
+		await browser.close();
+		server.close();
+	}
+}

@@ -8,12 +8,13 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
-import { BasisDecoder, blendProbes, probeNeighbourhood } from '../../decoders/baker_irradiance.js';
+import { BasisDecoder, blendProbes, finestLevelNeighbourhood, probeNeighbourhood } from '../../decoders/baker_irradiance.js';
 import { BAKER_IRRADIANCE_GLSL, bakerUniforms, probeTexture } from '../../decoders/baker_irradiance_webgl.js';
 
 const MODE_IRRADIANCE = 0, MODE_STATES = 1, MODE_VISIBILITY = 2;
-// Probe states 0 (inside geometry, filled from neighbours), 1 (valid), 2 (relocated), in sRGB.
-const STATE_COLOURS = [ [ 0xea, 0x43, 0x35 ], [ 0x34, 0xa8, 0x53 ], [ 0xfb, 0xbc, 0x04 ] ];
+// Probe states 0 (inside geometry, filled from neighbours), 1 (valid), 2 (relocated), 3 (on the
+// border of an adaptive volume's level: the coarser levels' value there), in sRGB.
+const STATE_COLOURS = [ [ 0xea, 0x43, 0x35 ], [ 0x34, 0xa8, 0x53 ], [ 0xfb, 0xbc, 0x04 ], [ 0x42, 0x85, 0xf4 ] ];
 const AXES = { '+X': [ 1, 0, 0 ], '-X': [ - 1, 0, 0 ], '+Y': [ 0, 1, 0 ], '-Y': [ 0, - 1, 0 ], '+Z': [ 0, 0, 1 ], '-Z': [ 0, 0, - 1 ] };
 
 const $ = ( id ) => document.getElementById( id );
@@ -23,6 +24,8 @@ function linearToSrgb( v ) {
 	return c <= 0.0031308 ? 12.92 * c : 1.055 * Math.pow( c, 1 / 2.4 ) - 0.055;
 }
 
+// Each level holds some of its grid's probes (a uniform volume: one level holding all), one row
+// each: `probes` gives a row's probe index on the level's grid (null: the row is the probe).
 async function loadVolume() {
 	const answer = await fetch( 'volume.json' );
 	if ( ! answer.ok ) throw new Error( `volume.json: ${ answer.status }` );
@@ -30,38 +33,58 @@ async function loadVolume() {
 	const response = await fetch( info.binary.file );
 	if ( ! response.ok ) throw new Error( `${ info.binary.file }: ${ response.status }` );
 	const bytes = await response.arrayBuffer();
-	const section = ( name, Type ) => new Type( bytes, info.binary.sections[ name ].byte_offset, info.binary.sections[ name ].count );
 	const set = info.reconstruction.function_sets[ 0 ];
 	const decoder = new BasisDecoder( info.basis, set.sharpness ?? 0 );
 	if ( ! decoder.valid ) throw new Error( `basis ${ info.basis } is not one this page decodes` );
 	if ( set.type === 'spherical-gaussians' ) decoder.setLobeAxes( set.axes );
-	return {
-		info, decoder,
-		coefficients: section( 'coefficients', Float32Array ),
-		visibility: section( 'visibility', Float32Array ),
-		states: section( 'states', Int32Array ),
-		offsets: section( 'offsets', Float32Array ),
-		probeCount: info.dims[ 0 ] * info.dims[ 1 ] * info.dims[ 2 ],
+	const levels = info.levels.map( ( level ) => {
+		const section = ( name, Type ) => level.sections[ name ] ? new Type( bytes, level.sections[ name ].byte_offset, level.sections[ name ].count ) : null;
+		const probes = section( 'probes', Int32Array );
+		return {
+			...level,
+			subBricksHeld: level.sub_bricks_held,
+			coefficients: section( 'coefficients', Float32Array ),
+			visibility: section( 'visibility', Float32Array ),
+			states: section( 'states', Int32Array ),
+			offsets: section( 'offsets', Float32Array ),
+			probes,
+			rowOfProbe: probes ? new Map( Array.from( probes, ( probe, row ) => [ probe, row ] ) ) : null,
+		};
+	} );
+	// The box the levels' probes span together (an adaptive volume's levels reach out to it by
+	// different margins), and its finest spacing.
+	const box = {
+		lo: [ 0, 1, 2 ].map( ( a ) => Math.min( ...levels.map( ( l ) => l.origin[ a ] ) ) ),
+		hi: [ 0, 1, 2 ].map( ( a ) => Math.max( ...levels.map( ( l ) => l.origin[ a ] + l.spacing * Math.max( l.dims[ a ] - 1, 1e-3 ) ) ) ),
+		spacing: Math.min( ...levels.map( ( l ) => l.spacing ) ),
 	};
+	return { info, decoder, levels, box };
 }
 
-function probePosition( info, p ) {
-	const [ nx, ny ] = info.dims;
+const probeOfRow = ( level, row ) => ( level.probes ? level.probes[ row ] : row );
+const rowOfProbe = ( level, probe ) => ( level.rowOfProbe ? level.rowOfProbe.get( probe ) ?? - 1 : probe );
+
+function probePosition( level, p ) {
+	const [ nx, ny ] = level.dims;
 	const ijk = [ p % nx, Math.floor( p / nx ) % ny, Math.floor( p / ( nx * ny ) ) ];
-	return new THREE.Vector3( ...ijk.map( ( i, a ) => info.origin[ a ] + info.spacing * i ) );
+	return new THREE.Vector3( ...ijk.map( ( i, a ) => level.origin[ a ] + level.spacing * i ) );
 }
 
-// E(n) and V(n) at a world position, interpolated as `baker sample` does.
+// E(n) and V(n) at a world position, interpolated as `baker sample` does: in an adaptive volume,
+// on the finest level whose probes around the position are held.
 function sampleAt( volume, position, normal ) {
-	const { info, decoder } = volume;
-	const around = probeNeighbourhood( position, info.origin, info.spacing, info.dims );
-	const e = decoder.irradiance( blendProbes( volume.coefficients, around, decoder.coefficientsPerProbe ), normal );
-	const v = info.visibility_per_probe > 0 ? decoder.visibility( blendProbes( volume.visibility, around, info.visibility_per_probe ), normal ) : null;
+	const { info, decoder, levels } = volume;
+	const around = levels.length === 1 ? { level: 0, ...probeNeighbourhood( position, levels[ 0 ].origin, levels[ 0 ].spacing, levels[ 0 ].dims ) } : finestLevelNeighbourhood( position, levels );
+	const level = levels[ around.level ];
+	const rows = { probe: around.probe.map( ( p, c ) => ( around.weight[ c ] === 0 ? 0 : rowOfProbe( level, p ) ) ), weight: around.weight };
+	if ( rows.probe.some( ( r ) => r < 0 ) ) throw new Error( `level ${ around.level } lacks a probe it should hold around ${ position }` );
+	const e = decoder.irradiance( blendProbes( level.coefficients, rows, decoder.coefficientsPerProbe ), normal );
+	const v = info.visibility_per_probe > 0 ? decoder.visibility( blendProbes( level.visibility, rows, info.visibility_per_probe ), normal ) : null;
 	return { irradiance: e, visibility: v };
 }
 
-function probeMaterial( volume, renderer ) {
-	const texture = probeTexture( volume.coefficients, volume.info.visibility_per_probe > 0 ? volume.visibility : null, volume.decoder, volume.probeCount );
+function probeMaterial( volume, level, renderer ) {
+	const texture = probeTexture( level.coefficients, volume.info.visibility_per_probe > 0 ? level.visibility : null, volume.decoder, level.rows );
 	const limit = renderer.capabilities.maxTextureSize;
 	if ( texture.height > limit ) throw new Error( `the probes need a ${ texture.width } × ${ texture.height } texture; this browser's WebGL takes ${ limit } rows` );
 	const data = new THREE.DataTexture( texture.data, texture.width, texture.height, THREE.RGBAFormat, THREE.FloatType );
@@ -80,7 +103,7 @@ out vec3 worldNormal;
 flat out int probe;
 flat out int state;
 void main() {
-  probe = gl_InstanceID;  // instance p is probe p
+  probe = gl_InstanceID;  // instance r is the level's row r
   state = int( probeState + 0.5 );
   mat4 world = modelMatrix * instanceMatrix;
   worldNormal = mat3( world ) * normal;
@@ -95,7 +118,7 @@ in vec3 worldNormal;
 flat in int probe;
 flat in int state;
 out vec4 fragColour;
-const vec3 STATE_COLOURS[3] = vec3[3]( ${ states } );
+const vec3 STATE_COLOURS[4] = vec3[4]( ${ states } );
 vec3 toSrgb( vec3 c ) {
   c = clamp( c, 0.0, 1.0 );
   return mix( 1.055 * pow( c, vec3( 1.0 / 2.4 ) ) - 0.055, 12.92 * c, vec3( lessThanEqual( c, vec3( 0.0031308 ) ) ) );
@@ -103,7 +126,7 @@ vec3 toSrgb( vec3 c ) {
 void main() {
   vec3 n = normalize( worldNormal );
   vec3 colour;
-  if ( mode == ${ MODE_STATES } ) colour = STATE_COLOURS[ clamp( state, 0, 2 ) ];
+  if ( mode == ${ MODE_STATES } ) colour = STATE_COLOURS[ clamp( state, 0, 3 ) ];
   else if ( mode == ${ MODE_VISIBILITY } ) colour = toSrgb( vec3( bakerVisibility( probe, n ) ) );
   else colour = toSrgb( bakerIrradiance( probe, n ) / 3.14159265358979 * exposure );
   fragColour = vec4( colour, 1.0 );
@@ -111,15 +134,35 @@ void main() {
 	} );
 }
 
-function probeSpheres( volume, renderer ) {
-	const { info } = volume;
-	const radius = 0.12 * info.spacing;
-	const mesh = new THREE.InstancedMesh( new THREE.SphereGeometry( radius, 64, 32 ), probeMaterial( volume, renderer ), volume.probeCount );
-	const state = new Float32Array( volume.probeCount );
-	const matrix = new THREE.Matrix4();
-	for ( let p = 0; p < volume.probeCount; ++ p ) {
-		mesh.setMatrixAt( p, matrix.makeTranslation( probePosition( info, p ) ) );
-		state[ p ] = volume.states[ p ];
+// Whether a finer level than `l` holds a probe at `position`: there that level's sphere is drawn,
+// the value sampling reads at the probe's own position.
+function finerLevelHolds( levels, l, position ) {
+	for ( let m = l + 1; m < levels.length; ++ m ) {
+		const level = levels[ m ];
+		const ijk = [ 0, 1, 2 ].map( ( a ) => ( position.getComponent( a ) - level.origin[ a ] ) / level.spacing );
+		if ( ijk.some( ( x, a ) => Math.abs( x - Math.round( x ) ) > 1e-4 || Math.round( x ) < 0 || Math.round( x ) >= level.dims[ a ] ) ) continue;
+		const [ i, j, k ] = ijk.map( Math.round );
+		if ( rowOfProbe( level, i + level.dims[ 0 ] * ( j + level.dims[ 1 ] * k ) ) >= 0 ) return true;
+	}
+	return false;
+}
+
+// One sphere per probe of a level (none where a finer level holds a probe at the same place),
+// instance r drawing the level's row r.
+function probeSpheres( volume, l, renderer ) {
+	const level = volume.levels[ l ];
+	const radius = 0.12 * level.spacing;
+	// About two million triangles in all, whatever the probe count (SwiftShader draws the tests'
+	// pages on the CPU); a pixel's normal is interpolated, so a sphere looks round at any count.
+	const rows = volume.levels.reduce( ( sum, l ) => sum + l.rows, 0 );
+	const segments = Math.min( 64, Math.max( 12, Math.floor( Math.sqrt( 2e6 / rows ) ) ) );
+	const mesh = new THREE.InstancedMesh( new THREE.SphereGeometry( radius, segments, segments / 2 ), probeMaterial( volume, level, renderer ), level.rows );
+	const state = new Float32Array( level.rows );
+	const matrix = new THREE.Matrix4(), hidden = new THREE.Matrix4().makeScale( 0, 0, 0 );
+	for ( let r = 0; r < level.rows; ++ r ) {
+		const position = probePosition( level, probeOfRow( level, r ) );
+		mesh.setMatrixAt( r, finerLevelHolds( volume.levels, l, position ) ? hidden : matrix.makeTranslation( position ) );
+		state[ r ] = level.states[ r ];
 	}
 	mesh.geometry.setAttribute( 'probeState', new THREE.InstancedBufferAttribute( state, 1 ) );
 	mesh.computeBoundingSphere();
@@ -128,14 +171,14 @@ function probeSpheres( volume, renderer ) {
 }
 
 // Arrows from each relocated probe's grid position to where its light was gathered.
-function relocationArrows( volume ) {
+function relocationArrows( level ) {
 	const group = new THREE.Group();
-	for ( let p = 0; p < volume.probeCount; ++ p ) {
-		if ( volume.states[ p ] !== 2 ) continue;
-		const offset = new THREE.Vector3( ...volume.offsets.subarray( 3 * p, 3 * p + 3 ) );
+	for ( let r = 0; r < level.rows; ++ r ) {
+		if ( level.states[ r ] !== 2 ) continue;
+		const offset = new THREE.Vector3( ...level.offsets.subarray( 3 * r, 3 * r + 3 ) );
 		const length = offset.length();
 		if ( ! ( length > 0 ) ) continue;
-		group.add( new THREE.ArrowHelper( offset.clone().normalize(), probePosition( volume.info, p ), length, 0xfbbc04, Math.min( 0.3 * length, 0.1 * volume.info.spacing ), Math.min( 0.2 * length, 0.06 * volume.info.spacing ) ) );
+		group.add( new THREE.ArrowHelper( offset.clone().normalize(), probePosition( level, probeOfRow( level, r ) ), length, 0xfbbc04, Math.min( 0.3 * length, 0.1 * level.spacing ), Math.min( 0.2 * length, 0.06 * level.spacing ) ) );
 	}
 	return group;
 }
@@ -145,11 +188,11 @@ class Slice {
 	constructor( volume, axis ) {
 		this.volume = volume;
 		this.axis = axis;
-		const { info } = volume;
+		const { box } = volume;
 		this.inPlane = [ 0, 1, 2 ].filter( ( a ) => a !== axis );
-		this.lo = info.origin.slice();
-		this.hi = info.origin.map( ( o, a ) => o + info.spacing * Math.max( info.dims[ a ] - 1, 1e-3 ) );
-		this.size = this.inPlane.map( ( a ) => Math.min( 256, Math.max( 2, 4 * ( info.dims[ a ] - 1 ) + 1 ) ) );
+		this.lo = box.lo;
+		this.hi = box.hi;
+		this.size = this.inPlane.map( ( a ) => Math.min( 256, Math.max( 2, 4 * Math.round( ( box.hi[ a ] - box.lo[ a ] ) / box.spacing ) + 1 ) ) );
 		const pixels = new Uint8Array( 4 * this.size[ 0 ] * this.size[ 1 ] );
 		this.texture = new THREE.DataTexture( pixels, this.size[ 0 ], this.size[ 1 ], THREE.RGBAFormat );
 		this.texture.colorSpace = THREE.SRGBColorSpace;
@@ -188,14 +231,26 @@ class Slice {
 // An exposure that puts the brighter probes (95th percentile of E/π over the six axes) at 0.8.
 function initialExposure( volume ) {
 	const values = [];
-	const step = Math.max( 1, Math.floor( volume.probeCount / 4096 ) );
-	for ( let p = 0; p < volume.probeCount; p += step ) {
-		if ( volume.states[ p ] === 0 ) continue;
-		for ( const n of Object.values( AXES ) ) values.push( Math.max( ...volume.decoder.irradiance( volume.coefficients, n, p * volume.decoder.coefficientsPerProbe ) ) / Math.PI );
+	const rows = volume.levels.reduce( ( sum, level ) => sum + level.rows, 0 );
+	const step = Math.max( 1, Math.floor( rows / 4096 ) );
+	for ( const level of volume.levels ) {
+		for ( let r = 0; r < level.rows; r += step ) {
+			if ( level.states[ r ] === 0 ) continue;
+			for ( const n of Object.values( AXES ) ) values.push( Math.max( ...volume.decoder.irradiance( level.coefficients, n, r * volume.decoder.coefficientsPerProbe ) ) / Math.PI );
+		}
 	}
 	values.sort( ( x, y ) => x - y );
 	const bright = values.length ? values[ Math.floor( 0.95 * ( values.length - 1 ) ) ] : 1;
 	return bright > 0 ? Math.round( 10 * Math.log2( 0.8 / bright ) ) / 10 : 0;
+}
+
+function summaryOf( volume ) {
+	const { info, levels } = volume;
+	const count = ( state ) => levels.reduce( ( sum, level ) => sum + level.states.filter( ( s ) => s === state ).length, 0 );
+	const grid = levels.length === 1 ? `${ info.dims.join( ' × ' ) } probes, spacing ${ info.spacing } m` :
+		`${ levels.length } levels, spacing ${ levels[ 0 ].spacing.toPrecision( 4 ) } to ${ levels[ levels.length - 1 ].spacing.toPrecision( 4 ) } m, ${ levels.reduce( ( sum, level ) => sum + level.rows, 0 ) } probes held`;
+	return `${ grid }; ${ count( 2 ) } relocated, ${ count( 0 ) } filled` + ( levels.length > 1 ? `, ${ count( 3 ) } interpolated at level borders` : '' ) +
+		( info.scene ? '' : '; no scene (baker view --gltf)' );
 }
 
 async function loadScene( url, scene ) {
@@ -220,27 +275,25 @@ async function main() {
 	sun.position.set( 1, 2, 1.5 );
 	scene.add( sun );
 
-	const centre = new THREE.Vector3( ...info.origin.map( ( o, a ) => o + 0.5 * info.spacing * ( info.dims[ a ] - 1 ) ) );
-	const extent = Math.max( ...info.dims ) * info.spacing;
+	const { box } = volume;
+	const centre = new THREE.Vector3( ...box.lo.map( ( lo, a ) => 0.5 * ( lo + box.hi[ a ] ) ) );
+	const extent = Math.max( ...box.hi.map( ( hi, a ) => hi - box.lo[ a ] ) ) + box.spacing;
 	const camera = new THREE.PerspectiveCamera( 50, canvas.clientWidth / canvas.clientHeight, extent * 1e-3, extent * 20 );
 	camera.position.copy( centre ).add( new THREE.Vector3( 0.9, 0.7, 1.2 ).multiplyScalar( extent ) );
 	const controls = new OrbitControls( camera, canvas );
 	controls.target.copy( centre );
 	controls.update();
 
-	const probes = probeSpheres( volume, renderer );
-	scene.add( probes );
-	const arrows = relocationArrows( volume );
-	scene.add( arrows );
+	const probes = volume.levels.map( ( _, l ) => probeSpheres( volume, l, renderer ) );
+	const arrows = volume.levels.map( ( level ) => relocationArrows( level ) );
+	[ ...probes, ...arrows ].forEach( ( o ) => scene.add( o ) );
 	const slices = [ 0, 1, 2 ].map( ( axis ) => new Slice( volume, axis ) );
 	slices.forEach( ( s ) => scene.add( s.mesh ) );
 	const gltfScene = await loadScene( info.scene, scene );
 
 	$( 'title' ).textContent = `${ info.volume }: ${ info.basis }`;
-	$( 'summary' ).textContent = `${ info.dims.join( ' × ' ) } probes, spacing ${ info.spacing } m; ` +
-		`${ volume.states.filter( ( s ) => s === 2 ).length } relocated, ${ volume.states.filter( ( s ) => s === 0 ).length } filled` +
-		( info.scene ? '' : '; no scene (baker view --gltf)' );
-	$( 'levels' ).innerHTML = info.levels.map( ( l ) => `<label><input type="checkbox" class="level" data-level="${ l.level }" checked> level ${ l.level } (spacing ${ l.spacing } m)</label>` ).join( '' );
+	$( 'summary' ).textContent = summaryOf( volume );
+	$( 'levels' ).innerHTML = volume.levels.map( ( l ) => `<label><input type="checkbox" class="level" id="level-${ l.level }" checked> level ${ l.level } (spacing ${ l.spacing.toPrecision( 4 ) } m, ${ l.rows } probes)</label>` ).join( '' );
 	for ( const name of Object.keys( AXES ) ) $( 'slice-normal' ).add( new Option( name, name, name === '+Y', name === '+Y' ) );
 	$( 'exposure' ).value = initialExposure( volume );
 	if ( info.visibility_per_probe === 0 ) $( 'show-visibility' ).disabled = true;
@@ -251,10 +304,12 @@ async function main() {
 	} );
 	function refresh() {
 		const { exposure, mode } = settings();
-		probes.material.uniforms.exposure.value = exposure;
-		probes.material.uniforms.mode.value = mode;
-		probes.visible = $( 'show-probes' ).checked && [ ...document.querySelectorAll( '.level' ) ].some( ( l ) => l.checked );
-		arrows.visible = $( 'show-offsets' ).checked;
+		probes.forEach( ( mesh, l ) => {
+			mesh.material.uniforms.exposure.value = exposure;
+			mesh.material.uniforms.mode.value = mode;
+			mesh.visible = $( 'show-probes' ).checked && $( `level-${ l }` ).checked;
+			arrows[ l ].visible = $( 'show-offsets' ).checked && $( `level-${ l }` ).checked;
+		} );
 		if ( gltfScene ) gltfScene.visible = $( 'show-scene' ).checked;
 		const visibilityMode = mode === MODE_VISIBILITY;
 		slices.forEach( ( s, a ) => {
@@ -263,6 +318,7 @@ async function main() {
 		} );
 		$( 'exposure-value' ).textContent = `${ Number( $( 'exposure' ).value ).toFixed( 1 ) } stops (×${ exposure.toPrecision( 3 ) })`;
 		drawColourBar( exposure, visibilityMode );
+		render();
 	}
 	function drawColourBar( exposure, visibilityMode ) {
 		const bar = $( 'colourbar' ), context = bar.getContext( '2d' );
@@ -293,7 +349,7 @@ async function main() {
 		if ( ! down || Math.hypot( e.clientX - down[ 0 ], e.clientY - down[ 1 ] ) > 4 ) return;
 		const rect = canvas.getBoundingClientRect();
 		raycaster.setFromCamera( new THREE.Vector2( ( e.clientX - rect.left ) / rect.width * 2 - 1, - ( ( e.clientY - rect.top ) / rect.height ) * 2 + 1 ), camera );
-		const targets = [ probes, ...slices.map( ( s ) => s.mesh ), ...( gltfScene ? [ gltfScene ] : [] ) ].filter( ( o ) => o.visible );
+		const targets = [ ...probes, ...slices.map( ( s ) => s.mesh ), ...( gltfScene ? [ gltfScene ] : [] ) ].filter( ( o ) => o.visible );
 		const hit = raycaster.intersectObjects( targets, true )[ 0 ];
 		if ( hit ) pick( hit.point.toArray() );
 	} );
@@ -310,22 +366,29 @@ async function main() {
 		return result;
 	}
 
+	// Drawn when something changes rather than every frame: the probes of a large volume are
+	// millions of triangles.
 	function render() {
 		renderer.render( scene, camera );
 	}
-	renderer.setAnimationLoop( () => {
-		controls.update();
-		render();
-	} );
+	let frameRequested = false;
+	function requestRender() {
+		if ( frameRequested ) return;
+		frameRequested = true;
+		requestAnimationFrame( () => { frameRequested = false; render(); } );
+	}
+	controls.addEventListener( 'change', requestRender );
 	window.addEventListener( 'resize', () => {
 		renderer.setSize( canvas.clientWidth, canvas.clientHeight, false );
 		camera.aspect = canvas.clientWidth / canvas.clientHeight;
 		camera.updateProjectionMatrix();
+		requestRender();
 	} );
 
-	// For tests and scripts: the colours of the four pixels around the centre of probe (i, j, k)'s
-	// sphere seen from `towards` (its normal there; the centre is their common corner, so their
-	// mean is the colour there to second order), with only the probes drawn; and pick() as a click does.
+	// For tests and scripts: the colours of the four pixels around the centre of the sphere of
+	// probe (i, j, k) of `level` seen from `towards` (its normal there; the centre is their common
+	// corner, so their mean is the colour there to second order), with only that level's probes
+	// drawn; and pick() as a click does.
 	window.viewer = {
 		info,
 		pick,
@@ -339,13 +402,14 @@ async function main() {
 			else e.value = String( value );
 			refresh();
 		},
-		captureProbe( ijk, towards ) {
-			const p = ijk[ 0 ] + info.dims[ 0 ] * ( ijk[ 1 ] + info.dims[ 1 ] * ijk[ 2 ] );
-			const at = probePosition( info, p ), n = new THREE.Vector3( ...towards ).normalize();
+		captureProbe( ijk, towards, l = 0 ) {
+			const level = volume.levels[ l ];
+			const at = probePosition( level, ijk[ 0 ] + level.dims[ 0 ] * ( ijk[ 1 ] + level.dims[ 1 ] * ijk[ 2 ] ) );
+			const n = new THREE.Vector3( ...towards ).normalize();
 			const saved = { position: camera.position.clone(), target: controls.target.clone() };
-			const hidden = [ arrows, ...slices.map( ( s ) => s.mesh ), ...( gltfScene ? [ gltfScene ] : [] ) ].filter( ( o ) => o.visible );
+			const hidden = [ ...probes.filter( ( _, m ) => m !== l ), ...arrows, ...slices.map( ( s ) => s.mesh ), ...( gltfScene ? [ gltfScene ] : [] ) ].filter( ( o ) => o.visible );
 			hidden.forEach( ( o ) => { o.visible = false; } );
-			camera.position.copy( at ).addScaledVector( n, 6 * probes.userData.radius );
+			camera.position.copy( at ).addScaledVector( n, 6 * probes[ l ].userData.radius );
 			camera.lookAt( at );
 			render();
 			const gl = renderer.getContext(), block = new Uint8Array( 16 );
