@@ -38,8 +38,9 @@ void appendLittleEndian(std::string& bytes, const T* values, std::size_t count) 
 
 // volume.bin, level after level: the probes the level holds, one row each in the level's row
 // order (ProbeRows), as coefficients, visibility, states (one int32 each), offsets (three floats
-// each) and, for a level that holds only some bricks, each row's probe index on the level's grid.
-// The level's "sections" say where each begins.
+// each), distance moments (the map's values per probe, when the volume holds them: leak-aware
+// reading) and, for a level that holds only some bricks, each row's probe index on the level's
+// grid. The level's "sections" say where each begins.
 nlohmann::json appendLevel(const Volume& v, int level, std::string& bytes) {
   const std::size_t rows = std::size_t(v.rows.count(v.grid));
   nlohmann::json sections = nlohmann::json::object();
@@ -59,6 +60,10 @@ nlohmann::json appendLevel(const Volume& v, int level, std::string& bytes) {
     for (int a = 0; a < 3; ++a) offsets[3 * r + a] = v.offsets[r][a];
   section("offsets", offsets.size());
   appendLittleEndian(bytes, offsets.data(), offsets.size());
+  if (v.distanceMomentsPerProbe() > 0) {
+    section("distance_moments", v.distanceMoments.size());
+    appendLittleEndian(bytes, v.distanceMoments.data(), v.distanceMoments.size());
+  }
   nlohmann::json heldSubBricks = nullptr;
   if (!v.rows.holdsEveryProbe()) {
     std::vector<std::int32_t> probes(rows);
@@ -96,6 +101,13 @@ nlohmann::json describe(const AdaptiveVolume& levels, const ViewerPage& page, co
           {"coefficients_per_probe", v.coefficientsPerProbe},
           {"visibility_per_probe", v.visibilityPerProbe},
           {"probe_states", v.hasProbeStates()},
+          // What leak-aware reading needs of the map (its moments: the first 2·size² values of
+          // each probe's values_per_probe); null when the volume holds none.
+          {"distance_map", v.distanceMomentsPerProbe() > 0
+                               ? nlohmann::json({{"size", v.distanceMap.size},
+                                                 {"cap", v.distanceMap.cap},
+                                                 {"values_per_probe", v.distanceMomentsPerProbe()}})
+                               : nlohmann::json(nullptr)},
           {"levels", std::move(levelLayouts)},
           {"units", "irradiance E(n) = integral of L(w) max(0, n.w) dw, in the scene's radiance units times "
                     "steradians"},

@@ -31,9 +31,10 @@ export function bake( args, cwd ) {
 	return JSON.parse( r.stdout );
 }
 
-// `baker sample VOLUME --at P --normal N --json`: the irradiance an engine should reproduce.
-export function sample( volume, at, normal ) {
-	const out = execFileSync( baker, [ 'sample', volume, '--at', at.join( ',' ), '--normal', normal.join( ',' ), '--json' ], { encoding: 'utf8' } );
+// `baker sample VOLUME --at P --normal N --json [--leak-aware]`: the irradiance an engine should
+// reproduce.
+export function sample( volume, at, normal, leakAware = false ) {
+	const out = execFileSync( baker, [ 'sample', volume, '--at', at.join( ',' ), '--normal', normal.join( ',' ), '--json', ...( leakAware ? [ '--leak-aware' ] : [] ) ], { encoding: 'utf8' } );
 	return JSON.parse( out );
 }
 

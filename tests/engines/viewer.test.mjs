@@ -83,6 +83,26 @@ try {
 		check( e.every( ( v, c ) => Math.abs( v - expected[ c ] ) <= 1e-5 * Math.max( 1, Math.abs( expected[ c ] ) ) ), `pick ${ name }: ${ e } against ${ expected }` );
 	}
 
+	// Leak-aware: the same point with each probe weighed by its distance map, as baker sample
+	// --leak-aware gives it; the walls beside the point turn probes away, so the values move.
+	const canvasImage = ( leakAware ) => page.evaluate( ( on ) => { window.viewer.setOption( 'leak-aware', on ); return document.getElementById( 'view' ).toDataURL(); }, leakAware );
+	await page.evaluate( () => window.viewer.setOption( 'slice-x', true ) );
+	const [ trilinearSlice, leakAwareSlice ] = [ await canvasImage( false ), await canvasImage( true ) ];
+	await page.evaluate( () => window.viewer.setOption( 'slice-x', false ) );
+	check( trilinearSlice !== leakAwareSlice, 'the leak-aware toggle redraws the slice' );
+	const leakPicked = await page.evaluate( ( p ) => window.viewer.pick( p ), point );
+	await page.evaluate( () => window.viewer.setOption( 'leak-aware', false ) );
+	let moved = 0;
+	for ( const [ name, e ] of Object.entries( leakPicked.irradiance ) ) {
+		const axis = { X: 0, Y: 1, Z: 2 }[ name[ 1 ] ], normal = [ 0, 0, 0 ];
+		normal[ axis ] = name[ 0 ] === '-' ? - 1 : 1;
+		const expected = sample( path.join( dir, 'room.vdb' ), point, normal, true ).irradiance;
+		check( e.every( ( v, c ) => Math.abs( v - expected[ c ] ) <= 1e-5 * Math.max( 1, Math.abs( expected[ c ] ) ) ), `leak-aware pick ${ name }: ${ e } against ${ expected }` );
+		moved = Math.max( moved, ...e.map( ( v, c ) => Math.abs( v - picked.irradiance[ name ][ c ] ) / Math.max( ...expected ) ) );
+	}
+	check( leakPicked.leakAware && moved > 0.01, `leak-aware reading moves the point's values (largest ${ ( 100 * moved ).toFixed( 1 ) } % of the brightest channel)` );
+	console.log( `leak-aware pick at ${ point }: baker sample --leak-aware's six values to 1e-5; ${ ( 100 * moved ).toFixed( 1 ) } % of the brightest channel from trilinear at most` );
+
 	// A real click on the canvas (the default view's centre looks at the room) prints a point.
 	await page.mouse.click( 700, 330 );
 	const printed = await page.evaluate( () => document.getElementById( 'picked' ).textContent );
@@ -145,6 +165,7 @@ async function checkAdaptivePage() {
 		const info = await page.evaluate( () => window.viewer.info );
 		const finest = info.levels.length - 1, level = info.levels[ finest ];
 		check( level.sub_bricks_held !== null && level.rows < level.dims[ 0 ] * level.dims[ 1 ] * level.dims[ 2 ], `the finest level holds some probes only: ${ level.rows } of ${ level.dims }` );
+		check( await page.evaluate( () => document.getElementById( 'leak-aware' ).disabled ), 'an adaptive volume, which holds no distance maps, disables leak-aware reading' );
 		const bytes = await page.evaluate( () => fetch( 'volume.bin' ).then( ( r ) => r.arrayBuffer() ).then( ( b ) => Array.from( new Int32Array( b ) ) ) );
 		const rowsOf = ( name ) => bytes.slice( level.sections[ name ].byte_offset / 4, level.sections[ name ].byte_offset / 4 + level.sections[ name ].count );
 		const [ states, probes ] = [ rowsOf( 'states' ), rowsOf( 'probes' ) ];

@@ -8,7 +8,7 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
-import { BasisDecoder, blendProbes, finestLevelNeighbourhood, probeNeighbourhood } from '../../decoders/baker_irradiance.js';
+import { BasisDecoder, blendProbes, finestLevelNeighbourhood, leakWeight, probeNeighbourhood } from '../../decoders/baker_irradiance.js';
 import { BAKER_IRRADIANCE_GLSL, bakerUniforms, probeTexture } from '../../decoders/baker_irradiance_webgl.js';
 
 const MODE_IRRADIANCE = 0, MODE_STATES = 1, MODE_VISIBILITY = 2;
@@ -47,6 +47,7 @@ async function loadVolume() {
 			visibility: section( 'visibility', Float32Array ),
 			states: section( 'states', Int32Array ),
 			offsets: section( 'offsets', Float32Array ),
+			distanceMoments: section( 'distance_moments', Float32Array ),
 			probes,
 			rowOfProbe: probes ? new Map( Array.from( probes, ( probe, row ) => [ probe, row ] ) ) : null,
 		};
@@ -71,13 +72,30 @@ function probePosition( level, p ) {
 }
 
 // E(n) and V(n) at a world position, interpolated as `baker sample` does: in an adaptive volume,
-// on the finest level whose probes around the position are held.
-function sampleAt( volume, position, normal ) {
+// on the finest level whose probes around the position are held; leak-aware (`baker sample
+// --leak-aware`, for a surface of that normal at the position), each probe's weight times the
+// leak weight its distance map gives, seen from where it was baked, then normalised.
+function sampleAt( volume, position, normal, leakAware = false ) {
 	const { info, decoder, levels } = volume;
 	const around = levels.length === 1 ? { level: 0, ...probeNeighbourhood( position, levels[ 0 ].origin, levels[ 0 ].spacing, levels[ 0 ].dims ) } : finestLevelNeighbourhood( position, levels );
 	const level = levels[ around.level ];
-	const rows = { probe: around.probe.map( ( p, c ) => ( around.weight[ c ] === 0 ? 0 : rowOfProbe( level, p ) ) ), weight: around.weight };
+	const rows = { probe: around.probe.map( ( p, c ) => ( around.weight[ c ] === 0 ? 0 : rowOfProbe( level, p ) ) ), weight: around.weight.slice() };
 	if ( rows.probe.some( ( r ) => r < 0 ) ) throw new Error( `level ${ around.level } lacks a probe it should hold around ${ position }` );
+	if ( leakAware && level.distanceMoments ) {
+		const [ nx, ny ] = level.dims, perProbe = info.distance_map.values_per_probe;
+		let changed = false;
+		rows.probe.forEach( ( r, c ) => {
+			if ( rows.weight[ c ] === 0 ) return;
+			const p = around.probe[ c ], ijk = [ p % nx, Math.floor( p / nx ) % ny, Math.floor( p / ( nx * ny ) ) ];
+			const baked = ijk.map( ( i, a ) => level.origin[ a ] + level.spacing * i + level.offsets[ 3 * r + a ] );
+			const leak = leakWeight( info.distance_map, level.distanceMoments, baked, position, normal, level.spacing, r * perProbe );
+			if ( leak === 1 ) return;
+			rows.weight[ c ] *= leak;
+			changed = true;
+		} );
+		const total = rows.weight.reduce( ( sum, w ) => sum + w, 0 );
+		if ( changed && total > 0 ) rows.weight = rows.weight.map( ( w ) => w / total );
+	}
 	const e = decoder.irradiance( blendProbes( level.coefficients, rows, decoder.coefficientsPerProbe ), normal );
 	const v = info.visibility_per_probe > 0 ? decoder.visibility( blendProbes( level.visibility, rows, info.visibility_per_probe ), normal ) : null;
 	return { irradiance: e, visibility: v };
@@ -204,7 +222,7 @@ class Slice {
 		this.mesh = new THREE.Mesh( geometry, new THREE.MeshBasicMaterial( { map: this.texture, side: THREE.DoubleSide, toneMapped: false } ) );
 	}
 
-	update( fraction, normal, exposure, visibilityMode ) {
+	update( fraction, normal, exposure, visibilityMode, leakAware ) {
 		const [ u, v ] = this.inPlane, a = this.axis;
 		const at = this.lo[ a ] + fraction * ( this.hi[ a ] - this.lo[ a ] );
 		const corner = ( su, sv ) => { const p = [ 0, 0, 0 ]; p[ a ] = at; p[ u ] = su ? this.hi[ u ] : this.lo[ u ]; p[ v ] = sv ? this.hi[ v ] : this.lo[ v ]; return p; };
@@ -218,7 +236,7 @@ class Slice {
 			p[ a ] = at;
 			p[ u ] = this.lo[ u ] + ( i / ( w - 1 ) ) * ( this.hi[ u ] - this.lo[ u ] );
 			p[ v ] = this.lo[ v ] + ( j / ( h - 1 ) ) * ( this.hi[ v ] - this.lo[ v ] );
-			const s = sampleAt( this.volume, p, normal );
+			const s = sampleAt( this.volume, p, normal, leakAware );
 			const shown = visibilityMode && s.visibility !== null ? [ s.visibility, s.visibility, s.visibility ] : s.irradiance.map( ( e ) => e / Math.PI * exposure );
 			const at4 = 4 * ( j * w + i );
 			for ( let c = 0; c < 3; ++ c ) pixels[ at4 + c ] = Math.round( 255 * linearToSrgb( shown[ c ] ) );
@@ -297,13 +315,18 @@ async function main() {
 	for ( const name of Object.keys( AXES ) ) $( 'slice-normal' ).add( new Option( name, name, name === '+Y', name === '+Y' ) );
 	$( 'exposure' ).value = initialExposure( volume );
 	if ( info.visibility_per_probe === 0 ) $( 'show-visibility' ).disabled = true;
+	if ( ! info.distance_map ) {
+		$( 'leak-aware' ).disabled = true;
+		$( 'leak-aware' ).parentElement.title = 'this volume holds no distance maps (adaptive volumes, or bakes with --distance-map 0)';
+	}
 
 	const settings = () => ( {
 		exposure: Math.pow( 2, Number( $( 'exposure' ).value ) ),
 		mode: $( 'show-states' ).checked ? MODE_STATES : $( 'show-visibility' ).checked ? MODE_VISIBILITY : MODE_IRRADIANCE,
+		leakAware: $( 'leak-aware' ).checked && ! $( 'leak-aware' ).disabled,
 	} );
 	function refresh() {
-		const { exposure, mode } = settings();
+		const { exposure, mode, leakAware } = settings();
 		probes.forEach( ( mesh, l ) => {
 			mesh.material.uniforms.exposure.value = exposure;
 			mesh.material.uniforms.mode.value = mode;
@@ -314,7 +337,7 @@ async function main() {
 		const visibilityMode = mode === MODE_VISIBILITY;
 		slices.forEach( ( s, a ) => {
 			s.mesh.visible = $( `slice-${ 'xyz'[ a ] }` ).checked;
-			if ( s.mesh.visible ) s.update( Number( $( `slice-${ 'xyz'[ a ] }-at` ).value ) / 1000, AXES[ $( 'slice-normal' ).value ], exposure, visibilityMode );
+			if ( s.mesh.visible ) s.update( Number( $( `slice-${ 'xyz'[ a ] }-at` ).value ) / 1000, AXES[ $( 'slice-normal' ).value ], exposure, visibilityMode, leakAware );
 		} );
 		$( 'exposure-value' ).textContent = `${ Number( $( 'exposure' ).value ).toFixed( 1 ) } stops (×${ exposure.toPrecision( 3 ) })`;
 		drawColourBar( exposure, visibilityMode );
@@ -354,10 +377,11 @@ async function main() {
 		if ( hit ) pick( hit.point.toArray() );
 	} );
 	function pick( position ) {
-		const lines = [ `position (${ position.map( ( x ) => x.toFixed( 4 ) ).join( ', ' ) })` ];
-		const result = { position, irradiance: {} };
+		const { leakAware } = settings();
+		const lines = [ `position (${ position.map( ( x ) => x.toFixed( 4 ) ).join( ', ' ) })${ leakAware ? ', leak-aware' : '' }` ];
+		const result = { position, leakAware, irradiance: {} };
 		for ( const [ name, n ] of Object.entries( AXES ) ) {
-			const s = sampleAt( volume, position, n );
+			const s = sampleAt( volume, position, n, leakAware );
 			result.irradiance[ name ] = s.irradiance;
 			lines.push( `${ name }  E = (${ s.irradiance.map( ( x ) => x.toPrecision( 6 ) ).join( ', ' ) })` );
 		}
