@@ -28,6 +28,7 @@
 #include "formats/VolumeLayout.h"
 #include "formats/VolumeReader.h"
 #include "formats/VolumeSampler.h"
+#include "images/ImageFiles.h"
 #include "tests/GltfTestAssets.h"
 #include "tests/TestData.h"
 
@@ -597,6 +598,69 @@ TEST(VolumeFormats, DistanceMapsWithoutTheSkysShareKeepFormat3) {
   EXPECT_FALSE(file.hasGrid("distance_map_000"));
   file.close();
   EXPECT_TRUE(readVolume(dir + "/v.vdb").distanceMoments == v.distanceMoments);
+}
+
+// EXR slices written between relighting and format 6 held the sky's share of each texel as a
+// scalar channel beside the moments'. The slices of today cut back into those channels, under
+// format 3, read back to the same volume; the same channels under format 6 are refused.
+TEST(VolumeFormats, Format3ExrSlicesWithTheSkysShareRead) {
+  const std::string dir = test::makeTempDir("formats_exr_format3_sky");
+  const auto basis = makeBasis("sh-l1");
+  Volume v = randomVolume(*basis, 25, {9, 3, 10});
+  const int n = 4, texels = n * n;
+  v.distanceMap = DistanceMapLayout::baked(n, 0.9375);
+  std::mt19937 rng(26);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  v.distanceMoments.resize(std::size_t(v.grid.probeCount() * v.distanceMomentsPerProbe()));
+  for (float& m : v.distanceMoments) m = unit(rng);
+  writeExrSlices(v, *basis, dir + "/today", ExrPrecision::Float);
+
+  // distance_map_TTT.R, .G, .B (values 2t, 2t + 1, 2n² + t) as distance_moments_{2t},
+  // distance_moments_{2t + 1} and sky_visibility_map_{t}.
+  const auto format3Name = [&](const std::string& name) {
+    if (name.rfind("distance_map_", 0) != 0) return name;
+    const int t = std::stoi(name.substr(13, 3));
+    const char c = name.back();
+    return c == 'B' ? fmt::format("sky_visibility_map_{:03}", t) : fmt::format("distance_moments_{:03}", 2 * t + (c == 'G'));
+  };
+  const auto writeThen = [&](const std::string& name, const std::string& version) {
+    const std::string out = dir + "/" + name;
+    std::filesystem::create_directories(out);
+    nlohmann::json manifest = nlohmann::json::parse(std::ifstream(dir + "/today/manifest.json"));
+    nlohmann::json map = nlohmann::json::parse(manifest["metadata"]["baker.distance_map"].get<std::string>());
+    map.erase("texel_grids");
+    manifest["metadata"]["baker.distance_map"] = map.dump();
+    manifest["metadata"]["baker.format_version"] = version;
+    manifest["format_version"] = std::stoi(version);
+    std::vector<std::string> channels;
+    for (const std::string& c : manifest["channels"].get<std::vector<std::string>>()) channels.push_back(format3Name(c));
+    manifest["channels"] = channels;
+    for (const std::string& slice : manifest["slices"].get<std::vector<std::string>>()) {
+      ImageReader reader(dir + "/today/" + slice);
+      const ImageHeader& h = reader.header();
+      std::vector<float> pixels(std::size_t(h.width) * h.height * h.channels);
+      EXPECT_TRUE(reader.readFloats(h.channels, pixels.data())) << reader.error();
+      ImageToWrite image;
+      image.format = "openexr";
+      image.width = h.width;
+      image.height = h.height;
+      for (const std::string& c : h.channelNames) image.channelNames.push_back(format3Name(c));
+      image.pixels = pixels.data();
+      image.intAttributes = {{"baker.slice", reader.intAttribute("baker.slice", -1)}};
+      std::string error;
+      EXPECT_TRUE(writeImage(image, out + "/" + slice, &error)) << error;
+    }
+    std::ofstream(out + "/manifest.json") << manifest.dump(2) << "\n";
+    return out;
+  };
+  const std::string format3 = writeThen("format3", "3");
+  const Volume back = readVolume(format3);
+  EXPECT_TRUE(back.distanceMap.skyVisibility);
+  EXPECT_TRUE(back.distanceMoments == v.distanceMoments);
+  expectSame(v, back, 0.0, format3);
+  EXPECT_EQ(distanceGridsOf(format3), DistanceGrids::ScalarPerValue);
+  const std::string error = errorOf(writeThen("format6", "6"));
+  EXPECT_NE(error.find("texel_grids"), std::string::npos) << error;
 }
 
 // OpenVDB writes a random UUID into each header; ours is derived from the content, so the same
