@@ -39,12 +39,15 @@ void appendLittleEndian(std::string& bytes, const T* values, std::size_t count) 
 // volume.bin, level after level: the probes the level holds, one row each in the level's row
 // order (ProbeRows), as coefficients, visibility, states (one int32 each), offsets (three floats
 // each), distance moments (the map's values per probe, when the volume holds them: leak-aware
-// reading) and, for a level that holds only some bricks, each row's probe index on the level's
-// grid. The level's "sections" say where each begins.
+// reading) and, for a level that holds only some bricks, each row's probe (i, j, k) on the
+// level's grid (three int32: a grid may hold more probes than an int32 counts) and a byte per
+// brick of 8³ (x fastest) with a bit per sub-brick of 4³ held. Each section starts on a multiple
+// of four bytes; the level's "sections" say where.
 nlohmann::json appendLevel(const Volume& v, int level, std::string& bytes) {
   const std::size_t rows = std::size_t(v.rows.count(v.grid));
   nlohmann::json sections = nlohmann::json::object();
   const auto section = [&](const char* name, std::size_t count) {
+    bytes.resize((bytes.size() + 3) / 4 * 4, '\0');
     sections[name] = {{"byte_offset", bytes.size()}, {"count", count}};
   };
   section("coefficients", v.coefficients.size());
@@ -64,23 +67,25 @@ nlohmann::json appendLevel(const Volume& v, int level, std::string& bytes) {
     section("distance_moments", v.distanceMoments.size());
     appendLittleEndian(bytes, v.distanceMoments.data(), v.distanceMoments.size());
   }
-  nlohmann::json heldSubBricks = nullptr;
+  const ProbeGrid& g = v.grid;
   if (!v.rows.holdsEveryProbe()) {
-    std::vector<std::int32_t> probes(rows);
-    for (std::size_t r = 0; r < rows; ++r) probes[r] = std::int32_t(v.rows.probeAt(v.grid, std::int64_t(r)));
+    std::vector<std::int32_t> probes(3 * rows);
+    for (std::size_t r = 0; r < rows; ++r) {
+      const std::int64_t p = v.rows.probeAt(g, std::int64_t(r));
+      const std::int64_t nx = g.dims.x(), ny = g.dims.y();
+      probes[3 * r] = std::int32_t(p % nx), probes[3 * r + 1] = std::int32_t(p / nx % ny);
+      probes[3 * r + 2] = std::int32_t(p / (nx * ny));
+    }
     section("probes", probes.size());
     appendLittleEndian(bytes, probes.data(), probes.size());
-    heldSubBricks = nlohmann::json::array();
-    for (std::int64_t b = 0; b < v.grid.brickCount(); ++b) heldSubBricks.push_back(int(v.rows.subBricks(v.grid, b)));
+    section("sub_bricks_held", std::size_t(g.brickCount()));
+    for (std::int64_t b = 0; b < g.brickCount(); ++b) bytes.push_back(char(v.rows.subBricks(g, b)));
   }
-  const ProbeGrid& g = v.grid;
   return {{"level", level},
           {"origin", {g.origin.x(), g.origin.y(), g.origin.z()}},
           {"spacing", g.spacing},
           {"dims", {g.dims.x(), g.dims.y(), g.dims.z()}},
           {"rows", rows},
-          // Per brick of 8³ (x fastest), a bit per sub-brick of 4³ held; null: every probe.
-          {"sub_bricks_held", heldSubBricks},
           {"sections", sections}};
 }
 

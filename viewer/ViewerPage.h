@@ -10,8 +10,9 @@ namespace baker {
 // with
 //  - index.html and viewer.js: the page, three.js bundled into it at build time (web/viewer/);
 //  - volume.json and volume.bin: the volume's levels (one for a uniform volume), basis and
-//    metadata, and each level's values (coefficients, sky visibility, probe states, offsets) for
-//    the probes it holds, as little-endian binary;
+//    metadata, and each level's values (coefficients, sky visibility, probe states, offsets,
+//    distance moments) for the probes it holds, with where they are on its grid, as
+//    little-endian binary;
 //  - scene/: the glTF scene with the files it refers to, when there is one.
 // The directory appears only when complete, and replaces only a page this tool wrote.
 struct ViewerPage {

@@ -21,6 +21,9 @@ check( written.code === 0, `baker view: exit ${ written.code }, ${ written.stder
 const summary = JSON.parse( written.stdout || '{}' );
 check( summary.scene && summary.scene.endsWith( 'default_room.gltf' ), `the scene beside the volume is found: ${ summary.scene }` );
 
+// The page draws on the next animation frame after a change.
+const drawn = ( page ) => page.evaluate( () => new Promise( ( resolve ) => requestAnimationFrame( () => requestAnimationFrame( resolve ) ) ) );
+
 function srgbToLinear( byte ) {
 	const v = byte / 255;
 	return v <= 0.04045 ? v / 12.92 : Math.pow( ( v + 0.055 ) / 1.055, 2.4 );
@@ -34,7 +37,7 @@ try {
 	const info = await page.evaluate( () => window.viewer.info );
 	const [ nx, ny, nz ] = info.dims;
 	const states = await page.evaluate( () => fetch( 'volume.bin' ).then( ( r ) => r.arrayBuffer() ).then( ( b ) => Array.from( new Int32Array( b ) ) ) );
-	check( info.levels.length === 1 && info.levels[ 0 ].sub_bricks_held === null, `a uniform volume is one level holding every probe: ${ JSON.stringify( info.levels.map( ( l ) => l.rows ) ) }` );
+	check( info.levels.length === 1 && ! info.levels[ 0 ].sections.probes, `a uniform volume is one level holding every probe: ${ JSON.stringify( info.levels.map( ( l ) => l.rows ) ) }` );
 	const stateOf = ( [ i, j, k ] ) => states[ info.levels[ 0 ].sections.states.byte_offset / 4 + i + nx * ( j + ny * k ) ];
 	// Three valid probes, each seen from its own side, at an exposure that shows its brightest
 	// channel at 0.8 (8-bit sRGB steps stay well under 1 % there).
@@ -85,7 +88,11 @@ try {
 
 	// Leak-aware: the same point with each probe weighed by its distance map, as baker sample
 	// --leak-aware gives it; the walls beside the point turn probes away, so the values move.
-	const canvasImage = ( leakAware ) => page.evaluate( ( on ) => { window.viewer.setOption( 'leak-aware', on ); return document.getElementById( 'view' ).toDataURL(); }, leakAware );
+	const canvasImage = async ( leakAware ) => {
+		await page.evaluate( ( on ) => window.viewer.setOption( 'leak-aware', on ), leakAware );
+		await drawn( page );
+		return page.evaluate( () => document.getElementById( 'view' ).toDataURL() );
+	};
 	await page.evaluate( () => window.viewer.setOption( 'slice-x', true ) );
 	const [ trilinearSlice, leakAwareSlice ] = [ await canvasImage( false ), await canvasImage( true ) ];
 	await page.evaluate( () => window.viewer.setOption( 'slice-x', false ) );
@@ -111,6 +118,7 @@ try {
 	if ( screenshot ) {
 		fs.mkdirSync( path.dirname( screenshot ), { recursive: true } );
 		await page.evaluate( () => window.viewer.resetExposure() );
+		await drawn( page );
 		await page.screenshot( { path: screenshot } );
 		console.log( `screenshot: ${ screenshot }` );
 	}
@@ -164,14 +172,14 @@ async function checkAdaptivePage() {
 		check( await page.evaluate( () => window.viewerReady === true ), `the adaptive page is ready (errors: ${ errors.join( '; ' ) })` );
 		const info = await page.evaluate( () => window.viewer.info );
 		const finest = info.levels.length - 1, level = info.levels[ finest ];
-		check( level.sub_bricks_held !== null && level.rows < level.dims[ 0 ] * level.dims[ 1 ] * level.dims[ 2 ], `the finest level holds some probes only: ${ level.rows } of ${ level.dims }` );
+		check( level.sections.sub_bricks_held && level.rows < level.dims[ 0 ] * level.dims[ 1 ] * level.dims[ 2 ], `the finest level holds some probes only: ${ level.rows } of ${ level.dims }` );
 		check( await page.evaluate( () => document.getElementById( 'leak-aware' ).disabled ), 'an adaptive volume, which holds no distance maps, disables leak-aware reading' );
-		const bytes = await page.evaluate( () => fetch( 'volume.bin' ).then( ( r ) => r.arrayBuffer() ).then( ( b ) => Array.from( new Int32Array( b ) ) ) );
-		const rowsOf = ( name ) => bytes.slice( level.sections[ name ].byte_offset / 4, level.sections[ name ].byte_offset / 4 + level.sections[ name ].count );
-		const [ states, probes ] = [ rowsOf( 'states' ), rowsOf( 'probes' ) ];
-		const [ nx, ny ] = level.dims;
-		const ijkOf = ( p ) => [ p % nx, Math.floor( p / nx ) % ny, Math.floor( p / ( nx * ny ) ) ];
-		const valid = probes.filter( ( p, r ) => states[ r ] === 1 ).map( ijkOf );
+		const buffer = await page.evaluate( () => fetch( 'volume.bin' ).then( ( r ) => r.arrayBuffer() ).then( ( b ) => Array.from( new Uint8Array( b ) ) ) );
+		const bytes = new Uint8Array( buffer ), words = new Int32Array( bytes.buffer );
+		const sectionOf = ( l, name ) => { const s = info.levels[ l ].sections[ name ]; return name === 'sub_bricks_held' ? bytes.slice( s.byte_offset, s.byte_offset + s.count ) : words.slice( s.byte_offset / 4, s.byte_offset / 4 + s.count ); };
+		const probesOf = ( l ) => Array.from( { length: info.levels[ l ].rows }, ( _, r ) => Array.from( sectionOf( l, 'probes' ).slice( 3 * r, 3 * r + 3 ) ) );
+		const states = sectionOf( finest, 'states' ), probes = probesOf( finest );
+		const valid = probes.filter( ( _, r ) => states[ r ] === 1 );
 		const shown = [ valid[ Math.floor( valid.length / 3 ) ], valid[ Math.floor( 2 * valid.length / 3 ) ] ];
 		for ( const ijk of shown ) {
 			const position = ijk.map( ( i, a ) => level.origin[ a ] + level.spacing * i ), towards = [ 0.3, 0.5, 0.8 ];
@@ -189,6 +197,23 @@ async function checkAdaptivePage() {
 			await page.evaluate( ( l ) => window.viewer.setOption( `level-${ l }`, true ), finest );
 			check( without.pixels[ 0 ].join() !== shot.pixels[ 0 ].join(), `unticking level ${ finest } hides its sphere at ${ ijk }: ${ without.pixels[ 0 ] }` );
 		}
+		// A probe of level 1 where the finest level holds one too: hidden while the finest level is
+		// shown (its sphere is drawn there), drawn when it is not.
+		const coarse = info.levels[ finest - 1 ], held = new Set( probes.map( ( ijk ) => ijk.join() ) );
+		const coarseStates = sectionOf( finest - 1, 'states' );
+		const coinciding = ( coarse.sections.probes ? probesOf( finest - 1 ) : Array.from( { length: coarse.rows }, ( _, p ) => [ p % coarse.dims[ 0 ], Math.floor( p / coarse.dims[ 0 ] ) % coarse.dims[ 1 ], Math.floor( p / ( coarse.dims[ 0 ] * coarse.dims[ 1 ] ) ) ] ) )
+			.filter( ( ijk, r ) => coarseStates[ r ] === 1 && held.has( ijk.map( ( i, a ) => Math.round( ( coarse.origin[ a ] + coarse.spacing * i - level.origin[ a ] ) / level.spacing ) ).join() ) );
+		check( coinciding.length > 0, 'level 1 has a probe where the finest level holds one' );
+		if ( coinciding.length ) {
+			const capture = () => page.evaluate( ( ijk, l ) => window.viewer.captureProbe( ijk, [ 0.3, 0.5, 0.8 ], l ), coinciding[ 0 ], finest - 1 );
+			const background = ( shot ) => shot.pixels.every( ( p ) => p.join() === '32,33,36' );
+			const whileFinestShown = await capture();
+			await page.evaluate( ( l ) => window.viewer.setOption( `level-${ l }`, false ), finest );
+			const whileFinestHidden = await capture();
+			await page.evaluate( ( l ) => window.viewer.setOption( `level-${ l }`, true ), finest );
+			check( background( whileFinestShown ) && ! background( whileFinestHidden ), `level ${ finest - 1 } probe ${ coinciding[ 0 ] }: ${ JSON.stringify( whileFinestShown.pixels ) } while level ${ finest } is shown, ${ JSON.stringify( whileFinestHidden.pixels ) } while it is not` );
+		}
+
 		// Points across the box, and at the middle of each sub-brick the finest level leaves out
 		// (read at a coarser level); three read at each level baker sample reads them at.
 		const candidates = [];
@@ -198,7 +223,7 @@ async function checkAdaptivePage() {
 			candidates.push( at( f.map( ( x, a ) => x * ( level.dims[ a ] - 1 ) ) ) );
 		}
 		const bricks = level.dims.map( ( d ) => Math.ceil( d / 8 ) );
-		level.sub_bricks_held.forEach( ( mask, b ) => {
+		sectionOf( finest, 'sub_bricks_held' ).forEach( ( mask, b ) => {
 			const corner = [ b % bricks[ 0 ], Math.floor( b / bricks[ 0 ] ) % bricks[ 1 ], Math.floor( b / ( bricks[ 0 ] * bricks[ 1 ] ) ) ].map( ( x ) => 8 * x );
 			for ( let sub = 0; sub < 8; ++ sub ) {
 				const middle = corner.map( ( c, a ) => c + 4 * ( ( sub >> a ) & 1 ) + 1.5 );

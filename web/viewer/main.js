@@ -25,7 +25,8 @@ function linearToSrgb( v ) {
 }
 
 // Each level holds some of its grid's probes (a uniform volume: one level holding all), one row
-// each: `probes` gives a row's probe index on the level's grid (null: the row is the probe).
+// each: `probeIndex` gives a row's probe index on the level's grid (null: the row is the probe),
+// `rowOfProbe` the other way.
 async function loadVolume() {
 	const answer = await fetch( 'volume.json' );
 	if ( ! answer.ok ) throw new Error( `volume.json: ${ answer.status }` );
@@ -39,19 +40,30 @@ async function loadVolume() {
 	if ( set.type === 'spherical-gaussians' ) decoder.setLobeAxes( set.axes );
 	const levels = info.levels.map( ( level ) => {
 		const section = ( name, Type ) => level.sections[ name ] ? new Type( bytes, level.sections[ name ].byte_offset, level.sections[ name ].count ) : null;
-		const probes = section( 'probes', Int32Array );
+		const ijk = section( 'probes', Int32Array );
+		let probeIndex = null, rowOfProbe = null;
+		if ( ijk ) {
+			const [ nx, ny ] = level.dims;
+			probeIndex = new Float64Array( level.rows );
+			rowOfProbe = new Map();
+			for ( let r = 0; r < level.rows; ++ r ) {
+				probeIndex[ r ] = ijk[ 3 * r ] + nx * ( ijk[ 3 * r + 1 ] + ny * ijk[ 3 * r + 2 ] );
+				rowOfProbe.set( probeIndex[ r ], r );
+			}
+		}
 		return {
 			...level,
-			subBricksHeld: level.sub_bricks_held,
+			subBricksHeld: section( 'sub_bricks_held', Uint8Array ),
 			coefficients: section( 'coefficients', Float32Array ),
 			visibility: section( 'visibility', Float32Array ),
 			states: section( 'states', Int32Array ),
 			offsets: section( 'offsets', Float32Array ),
 			distanceMoments: section( 'distance_moments', Float32Array ),
-			probes,
-			rowOfProbe: probes ? new Map( Array.from( probes, ( probe, row ) => [ probe, row ] ) ) : null,
+			probeIndex,
+			rowOfProbe,
 		};
 	} );
+	levels.forEach( ( level, l ) => { level.coveredBy = finerLevelsHolding( levels, l ); } );
 	// The box the levels' probes span together (an adaptive volume's levels reach out to it by
 	// different margins), and its finest spacing.
 	const box = {
@@ -62,7 +74,7 @@ async function loadVolume() {
 	return { info, decoder, levels, box };
 }
 
-const probeOfRow = ( level, row ) => ( level.probes ? level.probes[ row ] : row );
+const probeOfRow = ( level, row ) => ( level.probeIndex ? level.probeIndex[ row ] : row );
 const rowOfProbe = ( level, probe ) => ( level.rowOfProbe ? level.rowOfProbe.get( probe ) ?? - 1 : probe );
 
 function probePosition( level, p ) {
@@ -152,40 +164,56 @@ void main() {
 	} );
 }
 
-// Whether a finer level than `l` holds a probe at `position`: there that level's sphere is drawn,
-// the value sampling reads at the probe's own position.
-function finerLevelHolds( levels, l, position ) {
-	for ( let m = l + 1; m < levels.length; ++ m ) {
-		const level = levels[ m ];
-		const ijk = [ 0, 1, 2 ].map( ( a ) => ( position.getComponent( a ) - level.origin[ a ] ) / level.spacing );
-		if ( ijk.some( ( x, a ) => Math.abs( x - Math.round( x ) ) > 1e-4 || Math.round( x ) < 0 || Math.round( x ) >= level.dims[ a ] ) ) continue;
-		const [ i, j, k ] = ijk.map( Math.round );
-		if ( rowOfProbe( level, i + level.dims[ 0 ] * ( j + level.dims[ 1 ] * k ) ) >= 0 ) return true;
+// Per row of level l, a bit for each finer level that holds a probe at the same place: while that
+// level is shown, its sphere is drawn there instead (the value sampling reads at that point).
+function finerLevelsHolding( levels, l ) {
+	const level = levels[ l ], covered = new Uint8Array( level.rows );
+	for ( let r = 0; r < level.rows; ++ r ) {
+		const at = probePosition( level, probeOfRow( level, r ) );
+		for ( let m = l + 1; m < levels.length; ++ m ) {
+			const finer = levels[ m ];
+			const ijk = [ 0, 1, 2 ].map( ( a ) => ( at.getComponent( a ) - finer.origin[ a ] ) / finer.spacing );
+			if ( ijk.some( ( x, a ) => Math.abs( x - Math.round( x ) ) > 1e-4 || Math.round( x ) < 0 || Math.round( x ) >= finer.dims[ a ] ) ) continue;
+			const [ i, j, k ] = ijk.map( Math.round );
+			if ( rowOfProbe( finer, i + finer.dims[ 0 ] * ( j + finer.dims[ 1 ] * k ) ) >= 0 ) covered[ r ] |= 1 << m;
+		}
 	}
-	return false;
+	return covered;
 }
 
-// One sphere per probe of a level (none where a finer level holds a probe at the same place),
-// instance r drawing the level's row r.
+// One sphere per probe of a level, instance r drawing the level's row r; showLevels() hides those a
+// shown finer level draws.
 function probeSpheres( volume, l, renderer ) {
 	const level = volume.levels[ l ];
 	const radius = 0.12 * level.spacing;
-	// About two million triangles in all, whatever the probe count (SwiftShader draws the tests'
+	// About half a million triangles in all, whatever the probe count (SwiftShader draws the tests'
 	// pages on the CPU); a pixel's normal is interpolated, so a sphere looks round at any count.
-	const rows = volume.levels.reduce( ( sum, l ) => sum + l.rows, 0 );
-	const segments = Math.min( 64, Math.max( 12, Math.floor( Math.sqrt( 2e6 / rows ) ) ) );
+	const rows = volume.levels.reduce( ( sum, other ) => sum + other.rows, 0 );
+	const segments = 2 * Math.min( 32, Math.max( 6, Math.floor( Math.sqrt( 5e5 / rows ) / 2 ) ) );
 	const mesh = new THREE.InstancedMesh( new THREE.SphereGeometry( radius, segments, segments / 2 ), probeMaterial( volume, level, renderer ), level.rows );
 	const state = new Float32Array( level.rows );
-	const matrix = new THREE.Matrix4(), hidden = new THREE.Matrix4().makeScale( 0, 0, 0 );
-	for ( let r = 0; r < level.rows; ++ r ) {
-		const position = probePosition( level, probeOfRow( level, r ) );
-		mesh.setMatrixAt( r, finerLevelHolds( volume.levels, l, position ) ? hidden : matrix.makeTranslation( position ) );
-		state[ r ] = level.states[ r ];
-	}
+	for ( let r = 0; r < level.rows; ++ r ) state[ r ] = level.states[ r ];
 	mesh.geometry.setAttribute( 'probeState', new THREE.InstancedBufferAttribute( state, 1 ) );
-	mesh.computeBoundingSphere();
-	mesh.userData.radius = radius;
+	mesh.userData = { radius, level, shownLevels: - 1 };
 	return mesh;
+}
+
+// Places the spheres (and arrows) of every level for the levels shown (bit l: level l): a probe a
+// shown finer level also holds is drawn at zero size.
+function showLevels( meshes, arrows, shownLevels ) {
+	const matrix = new THREE.Matrix4(), zero = new THREE.Vector3( 0, 0, 0 ), one = new THREE.Vector3( 1, 1, 1 ), turn = new THREE.Quaternion();
+	meshes.forEach( ( mesh, l ) => {
+		const { level } = mesh.userData;
+		if ( mesh.userData.shownLevels === shownLevels ) return;
+		mesh.userData.shownLevels = shownLevels;
+		for ( let r = 0; r < level.rows; ++ r ) {
+			const hidden = ( level.coveredBy[ r ] & shownLevels ) !== 0;
+			mesh.setMatrixAt( r, matrix.compose( probePosition( level, probeOfRow( level, r ) ), turn, hidden ? zero : one ) );
+		}
+		mesh.instanceMatrix.needsUpdate = true;
+		mesh.computeBoundingSphere();
+		arrows[ l ].children.forEach( ( arrow ) => { arrow.visible = ( level.coveredBy[ arrow.userData.row ] & shownLevels ) === 0; } );
+	} );
 }
 
 // Arrows from each relocated probe's grid position to where its light was gathered.
@@ -196,7 +224,9 @@ function relocationArrows( level ) {
 		const offset = new THREE.Vector3( ...level.offsets.subarray( 3 * r, 3 * r + 3 ) );
 		const length = offset.length();
 		if ( ! ( length > 0 ) ) continue;
-		group.add( new THREE.ArrowHelper( offset.clone().normalize(), probePosition( level, probeOfRow( level, r ) ), length, 0xfbbc04, Math.min( 0.3 * length, 0.1 * level.spacing ), Math.min( 0.2 * length, 0.06 * level.spacing ) ) );
+		const arrow = new THREE.ArrowHelper( offset.clone().normalize(), probePosition( level, probeOfRow( level, r ) ), length, 0xfbbc04, Math.min( 0.3 * length, 0.1 * level.spacing ), Math.min( 0.2 * length, 0.06 * level.spacing ) );
+		arrow.userData.row = r;
+		group.add( arrow );
 	}
 	return group;
 }
@@ -302,6 +332,19 @@ async function main() {
 	controls.target.copy( centre );
 	controls.update();
 
+	// Drawn when something changes rather than every frame: the probes of a large volume are
+	// millions of triangles.
+	function render() {
+		renderer.render( scene, camera );
+	}
+	let frameRequested = false;
+	function requestRender() {
+		if ( frameRequested ) return;
+		frameRequested = true;
+		requestAnimationFrame( () => { frameRequested = false; render(); } );
+	}
+	controls.addEventListener( 'change', requestRender );
+
 	const probes = volume.levels.map( ( _, l ) => probeSpheres( volume, l, renderer ) );
 	const arrows = volume.levels.map( ( level ) => relocationArrows( level ) );
 	[ ...probes, ...arrows ].forEach( ( o ) => scene.add( o ) );
@@ -317,7 +360,7 @@ async function main() {
 	if ( info.visibility_per_probe === 0 ) $( 'show-visibility' ).disabled = true;
 	if ( ! info.distance_map ) {
 		$( 'leak-aware' ).disabled = true;
-		$( 'leak-aware' ).parentElement.title = 'this volume holds no distance maps (adaptive volumes, or bakes with --distance-map 0)';
+		$( 'leak-aware' ).parentElement.title = 'this volume holds no distance maps (adaptive volumes, the Bevy and three.js exports, bakes with --distance-map 0)';
 	}
 
 	const settings = () => ( {
@@ -327,11 +370,13 @@ async function main() {
 	} );
 	function refresh() {
 		const { exposure, mode, leakAware } = settings();
+		const shownLevels = probes.reduce( ( bits, _, l ) => bits | ( $( `level-${ l }` ).checked ? 1 << l : 0 ), 0 );
+		showLevels( probes, arrows, shownLevels );
 		probes.forEach( ( mesh, l ) => {
 			mesh.material.uniforms.exposure.value = exposure;
 			mesh.material.uniforms.mode.value = mode;
-			mesh.visible = $( 'show-probes' ).checked && $( `level-${ l }` ).checked;
-			arrows[ l ].visible = $( 'show-offsets' ).checked && $( `level-${ l }` ).checked;
+			mesh.visible = $( 'show-probes' ).checked && ( shownLevels >> l & 1 ) === 1;
+			arrows[ l ].visible = $( 'show-offsets' ).checked && ( shownLevels >> l & 1 ) === 1;
 		} );
 		if ( gltfScene ) gltfScene.visible = $( 'show-scene' ).checked;
 		const visibilityMode = mode === MODE_VISIBILITY;
@@ -341,7 +386,7 @@ async function main() {
 		} );
 		$( 'exposure-value' ).textContent = `${ Number( $( 'exposure' ).value ).toFixed( 1 ) } stops (×${ exposure.toPrecision( 3 ) })`;
 		drawColourBar( exposure, visibilityMode );
-		render();
+		requestRender();
 	}
 	function drawColourBar( exposure, visibilityMode ) {
 		const bar = $( 'colourbar' ), context = bar.getContext( '2d' );
@@ -390,18 +435,6 @@ async function main() {
 		return result;
 	}
 
-	// Drawn when something changes rather than every frame: the probes of a large volume are
-	// millions of triangles.
-	function render() {
-		renderer.render( scene, camera );
-	}
-	let frameRequested = false;
-	function requestRender() {
-		if ( frameRequested ) return;
-		frameRequested = true;
-		requestAnimationFrame( () => { frameRequested = false; render(); } );
-	}
-	controls.addEventListener( 'change', requestRender );
 	window.addEventListener( 'resize', () => {
 		renderer.setSize( canvas.clientWidth, canvas.clientHeight, false );
 		camera.aspect = canvas.clientWidth / canvas.clientHeight;
@@ -427,8 +460,9 @@ async function main() {
 			refresh();
 		},
 		captureProbe( ijk, towards, l = 0 ) {
-			const level = volume.levels[ l ];
-			const at = probePosition( level, ijk[ 0 ] + level.dims[ 0 ] * ( ijk[ 1 ] + level.dims[ 1 ] * ijk[ 2 ] ) );
+			const level = volume.levels[ l ], p = ijk[ 0 ] + level.dims[ 0 ] * ( ijk[ 1 ] + level.dims[ 1 ] * ijk[ 2 ] );
+			if ( rowOfProbe( level, p ) < 0 ) throw new Error( `level ${ l } holds no probe ${ ijk }` );
+			const at = probePosition( level, p );
 			const n = new THREE.Vector3( ...towards ).normalize();
 			const saved = { position: camera.position.clone(), target: controls.target.clone() };
 			const hidden = [ ...probes.filter( ( _, m ) => m !== l ), ...arrows, ...slices.map( ( s ) => s.mesh ), ...( gltfScene ? [ gltfScene ] : [] ) ].filter( ( o ) => o.visible );
@@ -442,6 +476,7 @@ async function main() {
 			camera.position.copy( saved.position );
 			controls.target.copy( saved.target );
 			camera.lookAt( saved.target );
+			requestRender();
 			const pixels = [ 0, 1, 2, 3 ].map( ( i ) => Array.from( block.slice( 4 * i, 4 * i + 3 ) ) );
 			return { pixels, position: at.toArray(), normal: n.toArray(), exposure: settings().exposure };
 		},
