@@ -2,7 +2,7 @@
 """Time per probe to reach a relative irradiance error, the baker against scripting Blender Cycles.
 
     scripts/cycles_time_to_error.py [--scene cornell_box] [--baker build/baker] [--threads 2]
-        [--rays 4096,8192,16384,32768,65536] [--seeds 4] [--spp 2,4,8,16,32] [--cycles-seeds 2]
+        [--rays 4096,8192,16384,32768,65536] [--seeds 32] [--spp 2,4,8,16,32] [--cycles-seeds 8]
         [--res 128x64] [--target 0.01] [--volume-spacing 0.7] [--converged-rays 1048576] [--correct-pixel-bias]
         [--json OUT.json]
 
@@ -126,9 +126,9 @@ def main():
     ap.add_argument("--baker", default=os.path.join(ROOT, "build", "baker"))
     ap.add_argument("--threads", type=int, default=2)
     ap.add_argument("--rays", type=numbers, default=numbers("4096,8192,16384,32768,65536"))
-    ap.add_argument("--seeds", type=int, default=4)
+    ap.add_argument("--seeds", type=int, default=32)
     ap.add_argument("--spp", type=numbers, default=numbers("2,4,8,16,32"))
-    ap.add_argument("--cycles-seeds", type=int, default=2)
+    ap.add_argument("--cycles-seeds", type=int, default=8)
     ap.add_argument("--cycles-bounces", type=int, default=2)
     ap.add_argument("--res", default="128x64")
     ap.add_argument("--target", type=float, default=0.01)

@@ -99,7 +99,7 @@ nlohmann::json describe(const AdaptiveVolume& levels, const ViewerPage& page, co
           {"volume", std::filesystem::path(page.volumePath).filename().string()},
           {"basis", v.basisName},
           {"reconstruction", reconstructionData(*basis, storedSignalOf(v.settings))},
-          // The coarsest level's grid, which spans the volume's box.
+          // The coarsest level's grid; every level's is in "levels".
           {"dims", {g.dims.x(), g.dims.y(), g.dims.z()}},
           {"origin", {g.origin.x(), g.origin.y(), g.origin.z()}},
           {"spacing", g.spacing},
