@@ -63,6 +63,17 @@ Volume randomVolume(const Basis& basis, unsigned seed, Eigen::Vector3i dims = {9
   return v;
 }
 
+// randomVolume(basis, seed) with a distance map of `layout`, its values uniform in [0, 1).
+Volume randomVolumeWithDistanceMap(const Basis& basis, unsigned seed, const DistanceMapLayout& layout) {
+  Volume v = randomVolume(basis, seed, {9, 3, 10});
+  v.distanceMap = layout;
+  std::mt19937 rng(seed + 1);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  v.distanceMoments.resize(std::size_t(v.grid.probeCount() * v.distanceMomentsPerProbe()));
+  for (float& m : v.distanceMoments) m = unit(rng);
+  return v;
+}
+
 void expectSame(const Volume& a, const Volume& b, double relative, const std::string& what) {
   EXPECT_EQ(a.basisName, b.basisName) << what;
   EXPECT_EQ(a.grid.dims, b.grid.dims) << what;
@@ -444,13 +455,8 @@ void sealWithFnv1a(const std::string& path) {
 TEST(VolumeFormats, DistanceMapsReadFromEitherLayout) {
   const std::string dir = test::makeTempDir("formats_distance_layouts");
   const auto basis = makeBasis("sh-l1");
-  Volume v = randomVolume(*basis, 21, {9, 3, 10});
   const int n = 4, texels = n * n;
-  v.distanceMap = DistanceMapLayout::baked(n, 0.9375);
-  std::mt19937 rng(22);
-  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-  v.distanceMoments.resize(std::size_t(v.grid.probeCount() * v.distanceMomentsPerProbe()));
-  for (float& m : v.distanceMoments) m = unit(rng);
+  const Volume v = randomVolumeWithDistanceMap(*basis, 21, DistanceMapLayout::baked(n, 0.9375));
   writeVdb(v, *basis, dir + "/new.vdb");
   writeExrSlices(v, *basis, dir + "/exr", ExrPrecision::Float);
   for (const std::string& path : {dir + "/new.vdb", dir + "/exr"}) {
@@ -582,12 +588,7 @@ TEST(VolumeFormats, DistanceMapsReadFromEitherLayout) {
 TEST(VolumeFormats, DistanceMapsWithoutTheSkysShareKeepFormat3) {
   const std::string dir = test::makeTempDir("formats_distance_no_sky");
   const auto basis = makeBasis("sh-l1");
-  Volume v = randomVolume(*basis, 23, {9, 3, 10});
-  v.distanceMap = DistanceMapLayout{4, 0.9375, /*skyVisibility=*/false};
-  std::mt19937 rng(24);
-  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-  v.distanceMoments.resize(std::size_t(v.grid.probeCount() * v.distanceMomentsPerProbe()));
-  for (float& m : v.distanceMoments) m = unit(rng);
+  const Volume v = randomVolumeWithDistanceMap(*basis, 23, DistanceMapLayout{4, 0.9375, /*skyVisibility=*/false});
   writeVdb(v, *basis, dir + "/v.vdb");
   openvdb::initialize();
   openvdb::io::File file(dir + "/v.vdb");
@@ -606,13 +607,7 @@ TEST(VolumeFormats, DistanceMapsWithoutTheSkysShareKeepFormat3) {
 TEST(VolumeFormats, Format3ExrSlicesWithTheSkysShareRead) {
   const std::string dir = test::makeTempDir("formats_exr_format3_sky");
   const auto basis = makeBasis("sh-l1");
-  Volume v = randomVolume(*basis, 25, {9, 3, 10});
-  const int n = 4, texels = n * n;
-  v.distanceMap = DistanceMapLayout::baked(n, 0.9375);
-  std::mt19937 rng(26);
-  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-  v.distanceMoments.resize(std::size_t(v.grid.probeCount() * v.distanceMomentsPerProbe()));
-  for (float& m : v.distanceMoments) m = unit(rng);
+  const Volume v = randomVolumeWithDistanceMap(*basis, 25, DistanceMapLayout::baked(4, 0.9375));
   writeExrSlices(v, *basis, dir + "/today", ExrPrecision::Float);
 
   // distance_map_TTT.R, .G, .B (values 2t, 2t + 1, 2n² + t) as distance_moments_{2t},
