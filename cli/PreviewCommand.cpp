@@ -32,7 +32,8 @@ nlohmann::json previewJson(const std::string& out, const Preview& preview, const
                       {"colour_bar", {0.0, preview.colourBarEnd}},
                       {"max_irradiance", preview.maxIrradiance},
                       {"invalid_probes_shown", preview.invalidProbesShown},
-                      {"relocated_probes_shown", preview.relocatedProbesShown}};
+                      {"relocated_probes_shown", preview.relocatedProbesShown},
+                      {"cells_by_level", preview.cellsByLevel}};
   if (options.probe) j["probe"] = {options.probe->x(), options.probe->y(), options.probe->z()};
   if (reference)
     j["reference_probe"] = {{"index", reference->index},
@@ -48,7 +49,8 @@ int runPreviewCommand(int argc, char** argv) {
   CLI::App app{"Draw a volume as a PNG: its middle slices coloured by irradiance and sky visibility."};
   app.footer(
       "Rows: the XZ slice through the middle probe row (seen from above, x right, z down) and the XY slice through the "
-      "middle probe layer (seen from +Z, x right, y up). Panels: irradiance E towards +Y, towards -Y, sky visibility "
+      "middle probe layer (seen from +Z, x right, y up); of an adaptive volume, on its finest level's grid, each cell "
+      "the finest level's probe at its place or, where no level holds one, what sampling reads there. Panels: irradiance E towards +Y, towards -Y, sky visibility "
       "V(+Y) in grey. Red cross: invalid probe (filled from neighbours); cyan square: relocated probe. Colour bar: E "
       "from 0 to the largest shown (at most where colours reach 90% of white), ticks at the median (long) and powers of ten. Colours are x/(1+x), x = exposure "
       "x E; automatic exposure 1/(2 x median). --probe adds that position's E(n) as a lat-long sphere (reference "
@@ -72,7 +74,7 @@ int runPreviewCommand(int argc, char** argv) {
     }
     if (!probeText.empty()) options.probe = parseTriple("--probe", probeText);
     AtomicFile file(out);
-    const Volume volume = readVolume(path);
+    const AdaptiveVolume volume = readLevels(path);
 
     std::optional<ReferenceProbe> reference;
     RgbImage panorama;
@@ -85,7 +87,7 @@ int runPreviewCommand(int argc, char** argv) {
     writeSrgbPng(preview.image, 1.0, file.temporaryPath());
     file.commit();
 
-    const ProbeGrid& g = volume.grid;
+    const ProbeGrid& g = volume.levels.back().grid;  // the slices' grid
     const double sliceY = g.origin.y() + g.spacing * preview.xzSliceRow;
     const double sliceZ = g.origin.z() + g.spacing * preview.xySliceLayer;
     if (json) {
@@ -103,6 +105,10 @@ int runPreviewCommand(int argc, char** argv) {
                              options.exposure ? "" : " (automatic)");
     std::cout << fmt::format("shown: {} invalid probes (red cross), {} relocated (cyan square)\n",
                              preview.invalidProbesShown, preview.relocatedProbesShown);
+    if (volume.levels.size() > 1)
+      std::cout << fmt::format("levels: cells on the finest level's grid (spacing {:.4g}); their values from levels 0 "
+                               "(coarsest) to {}: {}\n",
+                               g.spacing, volume.levels.size() - 1, fmt::join(preview.cellsByLevel, ", "));
     if (reference)
       std::cout << fmt::format("reference probe {} at ({:.4g}, {:.4g}, {:.4g}), {:.4g} from --probe: {}\n", reference->index,
                                reference->position.x(), reference->position.y(), reference->position.z(),

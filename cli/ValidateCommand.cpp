@@ -57,9 +57,11 @@ int runValidateCommand(int argc, char** argv) {
       "Compare a volume with a reference volume (either format, any basis, any overlapping grid) or with "
       "reference_probe.py's radiance panoramas, in reconstructed irradiance E(n)."};
   app.footer(fmt::format(
-      "Each probe of the reference is compared at 26 normals: the {}. With the same grid the new volume's probe of the "
-      "same index is used, otherwise the new volume sampled trilinearly at the reference probe's position (reference "
-      "probes outside the new volume's cells are skipped). Validity (probe_state) must not change; metadata "
+      "Each probe of the reference (every level's, for an adaptive volume) is compared at 26 normals: the {}. With the "
+      "same grid the new volume's probe of the same level and index is used, otherwise (or where the new volume does not "
+      "hold it) the new volume read at the reference probe's position as sampling reads it (reference probes outside the "
+      "new volume's cells are skipped). Validity (probe_state) and, for adaptive volumes on the same grids, which "
+      "probes each level holds must not change; metadata "
       "differences are reported only.\n"
       "--run-time-env / --run-time-sky: NEW is read as decoders relight it at run time under that sky (its light less "
       "its sky_direct grids, plus the sky's irradiance from its SH to band 2 times NEW's sky visibility V(n)), to "
@@ -99,16 +101,16 @@ int runValidateCommand(int argc, char** argv) {
 
     ValidationReport result;
     if (!referenceDirectory.empty()) {
-      const Volume volume = readVolume(referencePath);
+      const AdaptiveVolume volume = readLevels(referencePath);
       const ReferenceSet references = readReferenceSet(referenceDirectory);
       const ReferenceComparison comparison = compareWithReference(volume, references, kWorstProbes);
       if (comparison.probesCompared == 0)
         throw InputError(fmt::format("{}/probes.json: no reference probe lies inside {}'s cells {}", referenceDirectory,
-                                     referencePath, coveredRegionText(volume.grid)));
+                                     referencePath, coveredRegionText(volume.coarsest().grid)));
       result = referenceValidationReport(comparison, referenceDirectory, referencePath, tolerance);
     } else {
-      const Volume reference = readVolume(referencePath);
-      const Volume candidate = readVolume(newPath);
+      const AdaptiveVolume reference = readLevels(referencePath);
+      const AdaptiveVolume candidate = readLevels(newPath);
       std::optional<DescribedSkyHarmonics> sky;
       std::vector<std::string> warnings;
       if (atRunTime) sky = skyHarmonicsOf(runTimeSky, warnings);
@@ -116,8 +118,8 @@ int runValidateCommand(int argc, char** argv) {
       const VolumeComparison comparison =
           compareVolumes(reference, candidate, kWorstProbes, {sky ? &sky->harmonics : nullptr, newPath});
       if (comparison.probesCompared == 0)
-        throw InputError(fmt::format("{}: its grid {} does not overlap {}'s {}", newPath, coveredRegionText(candidate.grid),
-                                     referencePath, coveredRegionText(reference.grid)));
+        throw InputError(fmt::format("{}: its grid {} does not overlap {}'s {}", newPath, coveredRegionText(candidate.coarsest().grid),
+                                     referencePath, coveredRegionText(reference.coarsest().grid)));
       result = volumeValidationReport(comparison, referencePath, newPath, tolerance);
       if (sky) result.json["run_time_sky"] = sky->description;
     }

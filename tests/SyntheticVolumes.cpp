@@ -9,6 +9,17 @@
 
 namespace baker::test {
 
+void smoothProbe(const Basis& basis, const Eigen::Vector3d& x, float* coefficients, float* visibility) {
+  for (int channel = 0; channel < 3; ++channel) {
+    float* f = coefficients + basis.coefficientOffset(channel);
+    f[0] = float(3.0 + 0.5 * channel + 0.3 * x.x() - 0.2 * x.z());  // the constant part
+    f[1] = float(0.4 + 0.1 * x.y());                                // a lobe towards +Y
+    for (int l = 2; l < 9; ++l) f[l] = float(0.02 * (l - 5) + 0.01 * x.x());
+  }
+  visibility[0] = float(1.5 + 0.1 * x.y());
+  visibility[1] = 0.3f;
+}
+
 Volume smoothVolume(const Eigen::Vector3i& dims, const Eigen::Vector3d& origin, double spacing) {
   const auto basis = makeBasis("sh-l2");
   Volume v;
@@ -27,17 +38,8 @@ Volume smoothVolume(const Eigen::Vector3i& dims, const Eigen::Vector3d& origin, 
     for (int j = 0; j < dims.y(); ++j)
       for (int i = 0; i < dims.x(); ++i) {
         const std::int64_t p = v.grid.linearIndex(i, j, k);
-        const Eigen::Vector3d x = v.grid.position(i, j, k);
-        float* c = v.coefficients.data() + p * v.coefficientsPerProbe;
-        for (int channel = 0; channel < 3; ++channel) {
-          float* f = c + basis->coefficientOffset(channel);
-          f[0] = float(3.0 + 0.5 * channel + 0.3 * x.x() - 0.2 * x.z());  // the constant part
-          f[1] = float(0.4 + 0.1 * x.y());                                // a lobe towards +Y
-          for (int l = 2; l < 9; ++l) f[l] = float(0.02 * (l - 5) + 0.01 * x.x());
-        }
-        float* vis = v.visibility.data() + p * v.visibilityPerProbe;
-        vis[0] = float(1.5 + 0.1 * x.y());
-        vis[1] = 0.3f;
+        smoothProbe(*basis, v.grid.position(i, j, k), v.coefficients.data() + p * v.coefficientsPerProbe,
+                    v.visibility.data() + p * v.visibilityPerProbe);
       }
   v.settings["rays"] = "64";
   return v;

@@ -3,10 +3,15 @@
 #include <string>
 #include <vector>
 
+#include "basis/Basis.h"
 #include "images/RgbImage.h"
 #include "volume/Volume.h"
 
 namespace baker::test {
+
+// The values smoothVolume gives a probe at world position x (sh-l2: 27 coefficients and the
+// visibility's first two).
+void smoothProbe(const Basis& basis, const Eigen::Vector3d& x, float* coefficients, float* visibility);
 
 // An sh-l2 volume whose irradiance is mostly constant with a gentle lobe, every coefficient an
 // affine function of the probe's world position: trilinear sampling reproduces it exactly, so a

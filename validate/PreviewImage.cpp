@@ -5,7 +5,6 @@
 #include <vector>
 
 #include "formats/VolumeReconstruction.h"
-#include "formats/VolumeSampler.h"
 #include "validate/DisplayColour.h"
 #include "validate/ReferencePanoramas.h"
 
@@ -27,50 +26,74 @@ void fillRect(RgbImage& image, int x, int y, int w, int h, const Eigen::Vector3f
       std::copy(colour.data(), colour.data() + 3, image.pixel(row, column));
 }
 
-// The probes of one slice as the panel shows them, row by row from the top.
+// What one cell of a slice shows: E up and down, sky visibility up, and the state of the probe
+// it shows (Valid where it shows a reading between probes).
+struct Cell {
+  Eigen::Vector3f up, down;
+  float skyUp = 0.0f;
+  ProbeState state = ProbeState::Valid;
+  int level = 0;  // the level its values come from
+};
+
+// The cells of one slice as the panel shows them, row by row from the top.
 struct Slice {
   int columns = 0;
   int rows = 0;
-  std::vector<std::int64_t> probes;
+  std::vector<Cell> cells;
 };
 
-Slice xzSlice(const ProbeGrid& g, int j) {
+// The row of the probe `level` holds at `world`, or -1 when `world` is not one of its lattice
+// points or the probe is not held.
+std::int64_t rowAt(const Volume& level, const Eigen::Vector3d& world) {
+  const Eigen::Vector3d index = (world - level.grid.origin) / level.grid.spacing;
+  const Eigen::Vector3d nearest = index.array().round();
+  if ((index - nearest).cwiseAbs().maxCoeff() > 1e-6) return -1;
+  for (int a = 0; a < 3; ++a)
+    if (nearest[a] < 0.0 || nearest[a] >= level.grid.dims[a]) return -1;
+  return level.rows.row(level.grid, int(nearest.x()), int(nearest.y()), int(nearest.z()));
+}
+
+// A cell at a probe of the finest level's grid: the finest level's probe held there, shown as it
+// is; where no level holds one, what an engine reads there (the finest level holding the probes
+// around it, interpolated). A uniform volume holds every probe.
+Cell readCell(const AdaptiveVolume& volume, const VolumeReconstruction& reading, const Eigen::Vector3d& world) {
+  const Volume& coarsest = volume.coarsest();
+  const auto shown = [&](const float* coefficients, const float* visibility, int level, ProbeState state) {
+    const double sky = coarsest.visibilityPerProbe > 0 ? reading.skyVisibility(visibility, kUp) : 0.0;
+    return Cell{reading.irradiance(coefficients, kUp), reading.irradiance(coefficients, -kUp), float(sky), state, level};
+  };
+  for (int l = int(volume.levels.size()) - 1; l >= 0; --l) {
+    const Volume& level = volume.levels[std::size_t(l)];
+    const std::int64_t row = rowAt(level, world);
+    if (row < 0) continue;
+    return shown(level.coefficients.data() + row * level.coefficientsPerProbe,
+                 level.visibility.data() + row * level.visibilityPerProbe, l,
+                 level.states.empty() ? ProbeState::Valid : level.states[std::size_t(row)]);
+  }
+  std::vector<float> coefficients(std::size_t(coarsest.coefficientsPerProbe)),
+      visibility(std::size_t(coarsest.visibilityPerProbe));
+  const int levels = int(volume.levels.size());
+  sampleLevels(volume.levels, levels, world, coefficients.data(), visibility.data());
+  return shown(coefficients.data(), visibility.data(), finestLevelAt(volume.levels, levels, world).level,
+               ProbeState::Valid);
+}
+
+Slice xzSlice(const AdaptiveVolume& volume, const VolumeReconstruction& reading, const ProbeGrid& g, int j) {
   Slice s{g.dims.x(), g.dims.z(), {}};
   for (int k = 0; k < g.dims.z(); ++k)
-    for (int i = 0; i < g.dims.x(); ++i) s.probes.push_back(g.linearIndex(i, j, k));
+    for (int i = 0; i < g.dims.x(); ++i) s.cells.push_back(readCell(volume, reading, g.position(i, j, k)));
   return s;
 }
 
-Slice xySlice(const ProbeGrid& g, int k) {
+Slice xySlice(const AdaptiveVolume& volume, const VolumeReconstruction& reading, const ProbeGrid& g, int k) {
   Slice s{g.dims.x(), g.dims.y(), {}};
   for (int j = g.dims.y() - 1; j >= 0; --j)
-    for (int i = 0; i < g.dims.x(); ++i) s.probes.push_back(g.linearIndex(i, j, k));
+    for (int i = 0; i < g.dims.x(); ++i) s.cells.push_back(readCell(volume, reading, g.position(i, j, k)));
   return s;
 }
 
-// What a slice's probes show: E up and down, and sky visibility up.
-struct SliceValues {
-  std::vector<Eigen::Vector3f> up, down;
-  std::vector<float> skyUp;
-};
-
-SliceValues sliceValues(const Volume& v, const VolumeReconstruction& reading, const Slice& s) {
-  SliceValues values;
-  for (std::int64_t p : s.probes) {
-    values.up.push_back(reading.irradiance(v.probe(p), kUp));
-    values.down.push_back(reading.irradiance(v.probe(p), -kUp));
-    values.skyUp.push_back(v.visibilityPerProbe > 0
-                               ? float(reading.skyVisibility(v.visibility.data() + p * v.visibilityPerProbe, kUp))
-                               : 0.0f);
-  }
-  return values;
-}
-
-ProbeState stateOf(const Volume& v, std::int64_t p) { return v.states.empty() ? ProbeState::Valid : v.states[p]; }
-
-// Cells of `colours` (one per probe of the slice), with the markers of invalid and relocated probes.
-void drawSlice(RgbImage& image, int x0, int y0, int cell, const Volume& v, const Slice& s,
-               const std::vector<Eigen::Vector3f>& colours) {
+// Cells of `colours` (one per cell of the slice), with the markers of invalid and relocated probes.
+void drawSlice(RgbImage& image, int x0, int y0, int cell, const Slice& s, const std::vector<Eigen::Vector3f>& colours) {
   // A background line between cells large enough to spare it, so that they read as probes.
   const int gap = cell >= 8 ? 1 : 0;
   for (int row = 0; row < s.rows; ++row)
@@ -78,7 +101,7 @@ void drawSlice(RgbImage& image, int x0, int y0, int cell, const Volume& v, const
       const std::size_t q = std::size_t(row) * s.columns + column;
       const int x = x0 + column * cell, y = y0 + row * cell;
       fillRect(image, x, y, cell - gap, cell - gap, colours[q]);
-      const ProbeState state = stateOf(v, s.probes[q]);
+      const ProbeState state = s.cells[q].state;
       if (state == ProbeState::Invalid) {
         const int thickness = cell >= 12 ? 2 : 1;
         for (int t = 0; t < cell - gap; ++t) {
@@ -130,15 +153,17 @@ void drawColourBar(Preview& preview, int barWidth, int barTop) {
 }
 
 // The probe's irradiance sphere, and beside it the reference panorama's irradiance and radiance.
-void drawProbeSpheres(Preview& preview, const Volume& volume, const VolumeReconstruction& reading, const PreviewOptions& options,
-                      int sphereWidth, int sphereHeight, int sphereTop) {
+void drawProbeSpheres(Preview& preview, const AdaptiveVolume& volume, const VolumeReconstruction& reading,
+                      const PreviewOptions& options, int sphereWidth, int sphereHeight, int sphereTop) {
   std::vector<Eigen::Vector3d> directions;
   for (int row = 0; row < sphereHeight; ++row)
     for (int column = 0; column < sphereWidth; ++column)
       directions.push_back(panoramaDirection(sphereWidth, sphereHeight, column, row));
-  const VolumeSample sample = sampleVolume(volume, *options.probe);
+  std::vector<float> coefficients(std::size_t(volume.coarsest().coefficientsPerProbe)),
+      visibility(std::size_t(volume.coarsest().visibilityPerProbe));
+  sampleLevels(volume.levels, int(volume.levels.size()), *options.probe, coefficients.data(), visibility.data());
   std::vector<Eigen::Vector3d> e;
-  for (const Eigen::Vector3d& d : directions) e.push_back(reading.irradiance(sample.coefficients.data(), d).cast<double>());
+  for (const Eigen::Vector3d& d : directions) e.push_back(reading.irradiance(coefficients.data(), d).cast<double>());
   blit(preview.image, sphereImage(sphereWidth, sphereHeight, e, preview.exposure), kMargin, sphereTop);
   if (options.referencePanorama) {
     const RgbImage& radiance = *options.referencePanorama;
@@ -158,23 +183,28 @@ void drawProbeSpheres(Preview& preview, const Volume& volume, const VolumeRecons
 
 }  // namespace
 
-Preview renderPreview(const Volume& volume, const PreviewOptions& options) {
-  const VolumeReconstruction reading(volume);
-  const ProbeGrid& g = volume.grid;
+Preview renderPreview(const AdaptiveVolume& volume, const PreviewOptions& options) {
+  const VolumeReconstruction reading(volume.coarsest());
+  const ProbeGrid& g = volume.levels.back().grid;
   Preview preview;
   preview.cellPixels = std::clamp(256 / g.dims.maxCoeff(), 4, 32);
   preview.xzSliceRow = g.dims.y() / 2;
   preview.xySliceLayer = g.dims.z() / 2;
-  const Slice slices[2] = {xzSlice(g, preview.xzSliceRow), xySlice(g, preview.xySliceLayer)};
-  const SliceValues values[2] = {sliceValues(volume, reading, slices[0]), sliceValues(volume, reading, slices[1])};
+  const Slice slices[2] = {xzSlice(volume, reading, g, preview.xzSliceRow),
+                           xySlice(volume, reading, g, preview.xySliceLayer)};
 
   std::vector<double> luminance;
-  for (const SliceValues& v : values)
-    for (const auto* side : {&v.up, &v.down})
-      for (const Eigen::Vector3f& e : *side) {
+  preview.cellsByLevel.assign(volume.levels.size(), 0);
+  for (const Slice& slice : slices)
+    for (const Cell& cell : slice.cells) {
+      for (const Eigen::Vector3f& e : {cell.up, cell.down}) {
         luminance.push_back(e.mean());
         preview.maxIrradiance = std::max(preview.maxIrradiance, double(e.maxCoeff()));
       }
+      preview.cellsByLevel[std::size_t(cell.level)] += 1;
+      preview.invalidProbesShown += cell.state == ProbeState::Invalid;
+      preview.relocatedProbesShown += cell.state == ProbeState::Relocated;
+    }
   preview.medianIrradiance = medianOf(luminance);
   const double typical = preview.medianIrradiance > 0.0 ? preview.medianIrradiance : preview.maxIrradiance;
   preview.exposure = options.exposure ? *options.exposure : typical > 0.0 ? 1.0 / (2.0 * typical) : 1.0;
@@ -197,19 +227,15 @@ Preview renderPreview(const Volume& volume, const PreviewOptions& options) {
   int top = kMargin;
   for (int s = 0; s < 2; ++s) {
     std::vector<Eigen::Vector3f> up, down, sky;
-    for (std::size_t q = 0; q < slices[s].probes.size(); ++q) {
-      up.push_back(displayedColour(values[s].up[q], preview.exposure));
-      down.push_back(displayedColour(values[s].down[q], preview.exposure));
-      sky.push_back(Eigen::Vector3f::Constant(std::clamp(values[s].skyUp[q], 0.0f, 1.0f)));
+    for (const Cell& c : slices[s].cells) {
+      up.push_back(displayedColour(c.up, preview.exposure));
+      down.push_back(displayedColour(c.down, preview.exposure));
+      sky.push_back(Eigen::Vector3f::Constant(std::clamp(c.skyUp, 0.0f, 1.0f)));
     }
     const std::vector<Eigen::Vector3f>* panels[3] = {&up, &down, &sky};
     for (int panel = 0; panel < 3; ++panel)
-      drawSlice(preview.image, kMargin + panel * (panelWidth + kMargin), top, cell, volume, slices[s], *panels[panel]);
+      drawSlice(preview.image, kMargin + panel * (panelWidth + kMargin), top, cell, slices[s], *panels[panel]);
     top += panelHeights[s] + kMargin;
-    for (std::int64_t p : slices[s].probes) {
-      preview.invalidProbesShown += stateOf(volume, p) == ProbeState::Invalid;
-      preview.relocatedProbesShown += stateOf(volume, p) == ProbeState::Relocated;
-    }
   }
 
   drawColourBar(preview, 3 * panelWidth + 2 * kMargin, barTop);

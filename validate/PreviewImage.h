@@ -1,15 +1,16 @@
 #pragma once
 #include <Eigen/Core>
 #include <optional>
+#include <vector>
 
 #include "images/RgbImage.h"
-#include "volume/Volume.h"
+#include "volume/AdaptiveVolume.h"
 
 namespace baker {
 
 // A picture of a volume a person reads at a glance (`baker preview`).
 //
-// Two rows of three panels, each probe a square cell of cellPixels = clamp(256 / largest dimension,
+// Two rows of three panels, each probe of the finest level's grid a square cell of cellPixels = clamp(256 / largest dimension,
 // 4, 32) pixels (a 16³ volume gets 16-pixel cells), 8-pixel margins:
 //   row 1: the XZ slice through the middle probe row j = ny/2, seen from above (x to the right,
 //          z downwards);
@@ -17,6 +18,9 @@ namespace baker {
 //          y upwards);
 //   panels: reconstructed irradiance E towards +Y, E towards −Y, sky visibility V(+Y) in grey
 //          (black 0, white 1).
+// A cell shows the probe of the finest level holding one at its place (a uniform volume holds
+// them all); where no level does, what an engine reads there (the finest level holding the
+// probes around it, interpolated: a coarser level's between its probes).
 // Invalid probes (filled from their neighbours) carry a red cross, relocated ones a cyan square.
 // Below: a colour bar from E = 0 (left) to the largest E shown or, if smaller, the E that shows at
 // 90 % of white (right; beyond it colours barely change), through the same exposure and tone
@@ -47,8 +51,9 @@ struct Preview {
   double colourBarEnd = 0.0;   // the E at the right end of the colour bar
   int invalidProbesShown = 0;
   int relocatedProbesShown = 0;
+  std::vector<int> cellsByLevel;  // of both slices, by the level their values come from
 };
 
-Preview renderPreview(const Volume& volume, const PreviewOptions& options);
+Preview renderPreview(const AdaptiveVolume& volume, const PreviewOptions& options);
 
 }  // namespace baker

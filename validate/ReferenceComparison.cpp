@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 
 #include "formats/VolumeReconstruction.h"
-#include "formats/VolumeSampler.h"
 
 namespace baker {
 namespace {
@@ -28,7 +27,8 @@ std::vector<MetadataDifference> settingDifferences(const Volume& volume, const R
 
 }  // namespace
 
-ReferenceComparison compareWithReference(const Volume& volume, const ReferenceSet& set, std::size_t worstCount) {
+ReferenceComparison compareWithReference(const AdaptiveVolume& levels, const ReferenceSet& set, std::size_t worstCount) {
+  const Volume& volume = levels.coarsest();
   const VolumeReconstruction reading(volume);
   const std::vector<Eigen::Vector3d>& normals = comparisonNormals();
   ReferenceComparison result;
@@ -36,15 +36,16 @@ ReferenceComparison compareWithReference(const Volume& volume, const ReferenceSe
   std::vector<ProbeDifference> differences;
   std::vector<ReferenceProbeError> probes;
   std::vector<Eigen::Vector3d> eVolume(normals.size());
+  std::vector<float> coefficients(std::size_t(volume.coefficientsPerProbe)), visibility(std::size_t(volume.visibilityPerProbe));
   for (const ReferenceProbe& probe : set.probes) {
     if (!insideCells(volume.grid, probe.position)) {
       ++result.probesOutside;
       continue;
     }
     const std::vector<Eigen::Vector3d> eReference = panoramaIrradiance(readRgbImage(probe.file), normals);
-    const VolumeSample sample = sampleVolume(volume, probe.position);
+    sampleLevels(levels.levels, int(levels.levels.size()), probe.position, coefficients.data(), visibility.data());
     for (std::size_t n = 0; n < normals.size(); ++n)
-      eVolume[n] = reading.irradiance(sample.coefficients.data(), normals[n]).cast<double>();
+      eVolume[n] = reading.irradiance(coefficients.data(), normals[n]).cast<double>();
     const ProbeDifference d = probeDifference(eReference, eVolume);
     differences.push_back(d);
     probes.push_back({probe, 0.0, d.maxAbsolute, d.referenceMean});

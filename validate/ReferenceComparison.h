@@ -5,6 +5,7 @@
 #include "validate/IrradianceError.h"
 #include "validate/ReferencePanoramas.h"
 #include "validate/VolumeComparison.h"
+#include "volume/AdaptiveVolume.h"
 #include "volume/Volume.h"
 
 namespace baker {
@@ -18,8 +19,9 @@ struct ReferenceProbeError {
 };
 
 // A volume against path-traced reference panoramas: at each reference probe inside the region the
-// volume's cells cover, the exact E(n) of its panorama against the volume sampled trilinearly there,
-// at the comparison normals (validate/IrradianceError.h).
+// volume's cells cover, the exact E(n) of its panorama against the volume read there as an engine
+// reads it (an adaptive volume's finest level holding the probes around it, trilinearly), at the
+// comparison normals (validate/IrradianceError.h).
 struct ReferenceComparison {
   std::int64_t probesCompared = 0;
   std::int64_t probesOutside = 0;
@@ -30,6 +32,6 @@ struct ReferenceComparison {
   std::vector<MetadataDifference> settingDifferences;
 };
 
-ReferenceComparison compareWithReference(const Volume& volume, const ReferenceSet& set, std::size_t worstCount);
+ReferenceComparison compareWithReference(const AdaptiveVolume& volume, const ReferenceSet& set, std::size_t worstCount);
 
 }  // namespace baker

@@ -66,6 +66,24 @@ ValidationCheck metadataCheck(const std::string& name, const std::vector<Metadat
   return c;
 }
 
+// Adaptive volumes on the same grids must place the same probes: where geometry moved, an engine
+// reads other probes there.
+ValidationCheck placementCheck(const VolumeComparison::Placement& placement) {
+  ValidationCheck c;
+  c.name = "placement unchanged";
+  c.passed = placement.referenceOnly == 0 && placement.newOnly == 0;
+  c.message = c.passed ? "every level holds the same probes"
+                       : fmt::format("{} probe(s) held only by the reference, {} only by the new volume (compared "
+                                     "where the new volume does not hold them as it reads there)",
+                                     placement.referenceOnly, placement.newOnly);
+  return c;
+}
+
+// "level L " before a probe of an adaptive volume's level; nothing for a uniform one.
+std::string levelText(const VolumeComparison& comparison, int level) {
+  return comparison.adaptive ? fmt::format("level {} ", level) : "";
+}
+
 // The verdict and the checks go into the JSON last, once every check is known.
 void recordChecks(ValidationReport& report) {
   nlohmann::json checks = nlohmann::json::array();
@@ -107,27 +125,30 @@ ValidationReport volumeValidationReport(const VolumeComparison& comparison, cons
   nlohmann::json worst = nlohmann::json::array();
   std::string worstDetails;
   for (const ComparedProbe& p : comparison.worst) {
-    worst.push_back({{"index", {p.index.x(), p.index.y(), p.index.z()}},
+    worst.push_back({{"level", p.level},
+                     {"index", {p.index.x(), p.index.y(), p.index.z()}},
                      {"position", triple(p.position)},
                      {"relative_error", p.relativeError},
                      {"max_abs_error", p.maxAbsoluteError},
                      {"reference_mean_irradiance", p.referenceMean}});
-    worstDetails += fmt::format("probe [{}, {}, {}] at {}: relative error {:.4g} (max |dE| {:.4g}, reference mean E {:.4g})\n",
-                                p.index.x(), p.index.y(), p.index.z(), positionText(p.position), p.relativeError,
-                                p.maxAbsoluteError, p.referenceMean);
+    worstDetails += fmt::format("{}probe [{}, {}, {}] at {}: relative error {:.4g} (max |dE| {:.4g}, reference mean E {:.4g})\n",
+                                levelText(comparison, p.level), p.index.x(), p.index.y(), p.index.z(),
+                                positionText(p.position), p.relativeError, p.maxAbsoluteError, p.referenceMean);
   }
   j["worst_probes"] = worst;
 
   nlohmann::json changes = nlohmann::json::array();
   std::string changeDetails;
   for (const ValidityChange& v : comparison.validityChanges) {
-    changes.push_back({{"index", {v.index.x(), v.index.y(), v.index.z()}},
+    changes.push_back({{"level", v.level},
+                       {"index", {v.index.x(), v.index.y(), v.index.z()}},
                        {"position", triple(v.position)},
                        {"reference", probeStateName(v.reference)},
                        {"new", probeStateName(v.candidate)}});
     if (changes.size() <= kListedChanges)
-      changeDetails += fmt::format("probe [{}, {}, {}] at {}: {} -> {}\n", v.index.x(), v.index.y(), v.index.z(),
-                                   positionText(v.position), probeStateName(v.reference), probeStateName(v.candidate));
+      changeDetails += fmt::format("{}probe [{}, {}, {}] at {}: {} -> {}\n", levelText(comparison, v.level), v.index.x(),
+                                   v.index.y(), v.index.z(), positionText(v.position), probeStateName(v.reference),
+                                   probeStateName(v.candidate));
   }
   if (changes.size() > kListedChanges) changeDetails += fmt::format("... and {} more\n", changes.size() - kListedChanges);
   j["validity_compared"] = comparison.validityCompared;
@@ -140,7 +161,8 @@ ValidationReport volumeValidationReport(const VolumeComparison& comparison, cons
   std::string worstProbe;
   if (!comparison.worst.empty()) {
     const ComparedProbe& w = comparison.worst.front();
-    worstProbe = fmt::format("probe [{}, {}, {}] {}", w.index.x(), w.index.y(), w.index.z(), positionText(w.position));
+    worstProbe = fmt::format("{}probe [{}, {}, {}] {}", levelText(comparison, w.level), w.index.x(), w.index.y(),
+                             w.index.z(), positionText(w.position));
   }
   report.checks.push_back(irradianceCheck(comparison.errors, tolerance, worstProbe, worstDetails));
 
@@ -156,6 +178,10 @@ ValidationReport volumeValidationReport(const VolumeComparison& comparison, cons
     validity.details = changeDetails;
   }
   report.checks.push_back(validity);
+  if (comparison.placement) report.checks.push_back(placementCheck(*comparison.placement));
+  j["placement_changes"] = comparison.placement ? nlohmann::json{{"reference_only", comparison.placement->referenceOnly},
+                                                                  {"new_only", comparison.placement->newOnly}}
+                                                : nlohmann::json(nullptr);
   report.checks.push_back(metadataCheck("metadata", comparison.metadataDifferences));
 
   recordChecks(report);

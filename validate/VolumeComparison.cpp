@@ -7,13 +7,12 @@
 
 #include "common/Error.h"
 #include "formats/VolumeReconstruction.h"
-#include "formats/VolumeSampler.h"
 
 namespace baker {
 namespace {
 
 // Files without probe_state hold only probes baked where the grid puts them.
-ProbeState stateOf(const Volume& v, std::int64_t p) { return v.states.empty() ? ProbeState::Valid : v.states[p]; }
+ProbeState stateOf(const Volume& v, std::int64_t row) { return v.states.empty() ? ProbeState::Valid : v.states[std::size_t(row)]; }
 
 std::string vectorText(const Eigen::Vector3d& v) { return fmt::format("{},{},{}", v.x(), v.y(), v.z()); }
 
@@ -43,6 +42,35 @@ std::vector<MetadataDifference> metadataDifferences(const Volume& a, const Volum
   return out;
 }
 
+bool sameLevels(const AdaptiveVolume& a, const AdaptiveVolume& b) {
+  if (a.levels.size() != b.levels.size()) return false;
+  for (std::size_t level = 0; level < a.levels.size(); ++level)
+    if (!sameGrid(a.levels[level].grid, b.levels[level].grid)) return false;
+  return true;
+}
+
+// The probes `volume` holds that `other` (on the same grids) does not, over every level.
+std::int64_t probesOnlyIn(const AdaptiveVolume& volume, const AdaptiveVolume& other) {
+  std::int64_t count = 0;
+  for (std::size_t level = 0; level < volume.levels.size(); ++level) {
+    const Volume& v = volume.levels[level];
+    for (std::int64_t row = 0; row < v.rows.count(v.grid); ++row)
+      count += other.levels[level].rowOf(v.rows.probeAt(v.grid, row)) < 0;
+  }
+  return count;
+}
+
+Eigen::Vector3i indexOf(const ProbeGrid& g, std::int64_t p) {
+  return {int(p % g.dims.x()), int(p / g.dims.x() % g.dims.y()), int(p / (std::int64_t(g.dims.x()) * g.dims.y()))};
+}
+
+// How the new volume reads at one reference probe: its own probe there, or sampled.
+struct CandidateReading {
+  const float* coefficients;
+  const float* visibility;
+  std::int64_t row;  // its row at the reference probe's level when it holds that probe, else -1
+};
+
 }  // namespace
 
 bool sameGrid(const ProbeGrid& grid, const ProbeGrid& other) {
@@ -69,59 +97,78 @@ Volume lightThatIsNotTheSkys(const Volume& volume, const std::string& name) {
   return rest;
 }
 
-VolumeComparison compareVolumes(const Volume& reference, const Volume& candidateAsStored, std::size_t worstCount,
-                                const RunTimeSky& runTimeSky) {
-  const std::optional<Volume> rest =
-      runTimeSky.sky ? std::optional(lightThatIsNotTheSkys(candidateAsStored, runTimeSky.name)) : std::nullopt;
-  const Volume& candidate = rest ? *rest : candidateAsStored;
-  const VolumeReconstruction referenceReading(reference), candidateReading(candidate);
+VolumeComparison compareVolumes(const AdaptiveVolume& reference, const AdaptiveVolume& candidateAsStored,
+                                std::size_t worstCount, const RunTimeSky& runTimeSky) {
+  AdaptiveVolume rest;
+  if (runTimeSky.sky) {
+    rest.marginCells = candidateAsStored.marginCells;
+    for (const Volume& level : candidateAsStored.levels) rest.levels.push_back(lightThatIsNotTheSkys(level, runTimeSky.name));
+  }
+  const AdaptiveVolume& candidate = runTimeSky.sky ? rest : candidateAsStored;
+  const VolumeReconstruction referenceReading(reference.coarsest()), candidateReading(candidate.coarsest());
   const std::vector<Eigen::Vector3d>& normals = comparisonNormals();
-  const ProbeGrid& g = reference.grid;
-  const bool visibility = reference.visibilityPerProbe > 0 && candidate.visibilityPerProbe > 0;
+  const bool visibility = reference.coarsest().visibilityPerProbe > 0 && candidate.coarsest().visibilityPerProbe > 0;
+  const int candidateLevels = int(candidate.levels.size());
 
   VolumeComparison result;
-  result.gridsMatch = sameGrid(g, candidate.grid);
+  result.adaptive = reference.levels.size() > 1;
+  result.gridsMatch = sameLevels(reference, candidate);
   result.validityCompared = result.gridsMatch;
-  result.metadataDifferences = metadataDifferences(reference, candidate);
+  result.metadataDifferences = metadataDifferences(reference.coarsest(), candidate.coarsest());
+  if (reference.levels.size() != candidate.levels.size())
+    result.metadataDifferences.push_back(
+        {"levels", std::to_string(reference.levels.size()), std::to_string(candidate.levels.size())});
+  if (result.gridsMatch && (reference.levels.size() > 1 || candidate.levels.size() > 1))
+    result.placement = VolumeComparison::Placement{probesOnlyIn(reference, candidate), probesOnlyIn(candidate, reference)};
   if (visibility) result.skyVisibilityMaxDifference = 0.0;
 
   std::vector<ProbeDifference> differences;
   std::vector<ComparedProbe> probes;
   std::vector<Eigen::Vector3d> eReference(normals.size()), eCandidate(normals.size());
-  for (int k = 0; k < g.dims.z(); ++k)
-    for (int j = 0; j < g.dims.y(); ++j)
-      for (int i = 0; i < g.dims.x(); ++i) {
-        const std::int64_t p = g.linearIndex(i, j, k);
-        const Eigen::Vector3d position = g.position(i, j, k);
-        if (!result.gridsMatch && !insideCells(candidate.grid, position)) {
+  std::vector<float> sampledCoefficients(std::size_t(candidate.coarsest().coefficientsPerProbe));
+  std::vector<float> sampledVisibility(std::size_t(candidate.coarsest().visibilityPerProbe));
+  for (int level = 0; level < int(reference.levels.size()); ++level) {
+    const Volume& r = reference.levels[std::size_t(level)];
+    for (std::int64_t referenceRow = 0; referenceRow < r.rows.count(r.grid); ++referenceRow) {
+      const std::int64_t p = r.rows.probeAt(r.grid, referenceRow);
+      const Eigen::Vector3i index = indexOf(r.grid, p);
+      const Eigen::Vector3d position = r.grid.position(index.x(), index.y(), index.z());
+      CandidateReading c{nullptr, nullptr, result.gridsMatch ? candidate.levels[std::size_t(level)].rowOf(p) : -1};
+      if (c.row >= 0) {
+        const Volume& v = candidate.levels[std::size_t(level)];
+        c.coefficients = v.coefficients.data() + c.row * v.coefficientsPerProbe;
+        c.visibility = v.visibility.data() + c.row * v.visibilityPerProbe;
+      } else {
+        if (!insideCells(candidate.coarsest().grid, position)) {
           ++result.probesOutside;
           continue;
         }
-        VolumeSample sample;
-        if (!result.gridsMatch) sample = sampleVolume(candidate, position);
-        const float* coefficients = result.gridsMatch ? candidate.probe(p) : sample.coefficients.data();
-        const float* candidateVisibility =
-            result.gridsMatch ? candidate.visibility.data() + p * candidate.visibilityPerProbe : sample.visibility.data();
-        for (std::size_t n = 0; n < normals.size(); ++n) {
-          eReference[n] = referenceReading.irradiance(reference.probe(p), normals[n]).cast<double>();
-          eCandidate[n] = (runTimeSky.sky ? candidateReading.relitIrradiance(coefficients, candidateVisibility, normals[n],
-                                                                             *runTimeSky.sky)
-                                          : candidateReading.irradiance(coefficients, normals[n]))
-                              .cast<double>();
-          if (visibility) {
-            const double vr = referenceReading.skyVisibility(
-                reference.visibility.data() + p * reference.visibilityPerProbe, normals[n]);
-            const double vc = candidateReading.skyVisibility(candidateVisibility, normals[n]);
-            result.skyVisibilityMaxDifference = std::max(*result.skyVisibilityMaxDifference, std::abs(vc - vr));
-          }
-        }
-        const ProbeDifference d = probeDifference(eReference, eCandidate);
-        differences.push_back(d);
-        probes.push_back({Eigen::Vector3i(i, j, k), position, 0.0, d.maxAbsolute, d.referenceMean});
-        if (result.validityCompared && stateOf(reference, p) != stateOf(candidate, p))
-          result.validityChanges.push_back(
-              {Eigen::Vector3i(i, j, k), position, stateOf(reference, p), stateOf(candidate, p)});
+        sampleLevels(candidate.levels, candidateLevels, position, sampledCoefficients.data(), sampledVisibility.data());
+        c.coefficients = sampledCoefficients.data();
+        c.visibility = sampledVisibility.data();
       }
+      const float* referenceVisibility = r.visibility.data() + referenceRow * r.visibilityPerProbe;
+      for (std::size_t n = 0; n < normals.size(); ++n) {
+        eReference[n] = referenceReading.irradiance(r.coefficients.data() + referenceRow * r.coefficientsPerProbe,
+                                                    normals[n]).cast<double>();
+        eCandidate[n] = (runTimeSky.sky ? candidateReading.relitIrradiance(c.coefficients, c.visibility, normals[n],
+                                                                           *runTimeSky.sky)
+                                        : candidateReading.irradiance(c.coefficients, normals[n]))
+                            .cast<double>();
+        if (visibility) {
+          const double vr = referenceReading.skyVisibility(referenceVisibility, normals[n]);
+          const double vc = candidateReading.skyVisibility(c.visibility, normals[n]);
+          result.skyVisibilityMaxDifference = std::max(*result.skyVisibilityMaxDifference, std::abs(vc - vr));
+        }
+      }
+      const ProbeDifference d = probeDifference(eReference, eCandidate);
+      differences.push_back(d);
+      probes.push_back({level, index, position, 0.0, d.maxAbsolute, d.referenceMean});
+      if (c.row < 0) continue;
+      const ProbeState before = stateOf(r, referenceRow), after = stateOf(candidate.levels[std::size_t(level)], c.row);
+      if (result.validityCompared && before != after) result.validityChanges.push_back({level, index, position, before, after});
+    }
+  }
 
   result.probesCompared = std::int64_t(probes.size());
   result.errors = relativeErrors(differences);
