@@ -15,15 +15,16 @@ namespace baker {
 // p99_relative_error, level (mean over probes of the reference's mean irradiance), error_of_level
 // {mean, p99, max} (each probe's largest |E_new(n) - E_ref(n)| over normals and RGB / level; null
 // when the reference is black),
-// probes_compared, probes_outside_new_grid, worst_probes [{level, index, position,
+// probes_compared, probes_outside_new_grid, worst_probes [{adaptive_level, index, position,
 // relative_error, max_abs_error, reference_mean_irradiance}; against a reference also file, and
-// index is the probe's number in probes.json instead of [i, j, k], without level],
-// validity_compared, validity_changes [{level, index, position, reference, new}],
+// index is the probe's number in probes.json instead of [i, j, k], without adaptive_level],
+// validity_compared, validity_changes [{adaptive_level, index, position, reference, new}],
 // sky_visibility_max_abs_difference (null when not compared), metadata_differences [{field,
 // reference, new}], checks [{name, passed, skipped, message}]; volume mode also grids_match
 // (every level's grid the same) and placement_changes ({reference_only, new_only}: probes one
-// adaptive volume holds and the other does not; null unless both have the same grids and one has
-// levels), reference mode also note. level is 0 for a uniform volume.
+// adaptive volume holds and the other does not; null unless both are adaptive on the same grids),
+// reference mode also note. adaptive_level is the probe's level in an adaptive volume (0 for a
+// uniform one); the top-level `level` is an irradiance.
 // argv[0] is "validate".
 int runValidateCommand(int argc, char** argv);
 

@@ -39,10 +39,8 @@ std::vector<ProbeTask> measuredTasks(const BakeJob& job, int measured, std::vect
   const double stride = std::max(1.0, double(grid.probeCount()) / measured);
   for (double k = 0.0; k < double(grid.probeCount()); k += stride) {
     const std::int64_t p = std::int64_t(k);
-    const int i = int(p % grid.dims.x()), j = int((p / grid.dims.x()) % grid.dims.y()),
-              z = int(p / (std::int64_t(grid.dims.x()) * grid.dims.y()));
     candidates.push_back(p);
-    positions.push_back(grid.position(i, j, z).cast<float>());
+    positions.push_back(grid.position(p).cast<float>());
   }
   const std::vector<ProbePlacement> placements =
       placeProbes(job.tracer(), job.settings().transport, grid.spacing, positions, nullptr);

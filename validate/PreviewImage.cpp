@@ -70,12 +70,13 @@ Cell readCell(const AdaptiveVolume& volume, const VolumeReconstruction& reading,
                  level.visibility.data() + row * level.visibilityPerProbe, l,
                  level.states.empty() ? ProbeState::Valid : level.states[std::size_t(row)]);
   }
-  std::vector<float> coefficients(std::size_t(coarsest.coefficientsPerProbe)),
-      visibility(std::size_t(coarsest.visibilityPerProbe));
-  const int levels = int(volume.levels.size());
-  sampleLevels(volume.levels, levels, world, coefficients.data(), visibility.data());
-  return shown(coefficients.data(), visibility.data(), finestLevelAt(volume.levels, levels, world).level,
-               ProbeState::Valid);
+  thread_local std::vector<float> coefficients, visibility;
+  coefficients.resize(std::size_t(coarsest.coefficientsPerProbe));
+  visibility.resize(std::size_t(coarsest.visibilityPerProbe));
+  const LevelChoice choice = finestLevelAt(volume.levels, int(volume.levels.size()), world);
+  choice.interpolation.apply(volume.levels[std::size_t(choice.level)], !choice.interpolation.complete(),
+                             coefficients.data(), visibility.data());
+  return shown(coefficients.data(), visibility.data(), choice.level, ProbeState::Valid);
 }
 
 Slice xzSlice(const AdaptiveVolume& volume, const VolumeReconstruction& reading, const ProbeGrid& g, int j) {

@@ -125,7 +125,7 @@ ValidationReport volumeValidationReport(const VolumeComparison& comparison, cons
   nlohmann::json worst = nlohmann::json::array();
   std::string worstDetails;
   for (const ComparedProbe& p : comparison.worst) {
-    worst.push_back({{"level", p.level},
+    worst.push_back({{"adaptive_level", p.level},
                      {"index", {p.index.x(), p.index.y(), p.index.z()}},
                      {"position", triple(p.position)},
                      {"relative_error", p.relativeError},
@@ -140,7 +140,7 @@ ValidationReport volumeValidationReport(const VolumeComparison& comparison, cons
   nlohmann::json changes = nlohmann::json::array();
   std::string changeDetails;
   for (const ValidityChange& v : comparison.validityChanges) {
-    changes.push_back({{"level", v.level},
+    changes.push_back({{"adaptive_level", v.level},
                        {"index", {v.index.x(), v.index.y(), v.index.z()}},
                        {"position", triple(v.position)},
                        {"reference", probeStateName(v.reference)},
@@ -265,6 +265,9 @@ std::string textSummary(const ValidationReport& report) {
   if (j["probes_outside_new_grid"].get<std::int64_t>() > 0)
     text += fmt::format(" ({} outside the new volume's grid, skipped)", j["probes_outside_new_grid"].get<std::int64_t>());
   if (j.contains("grids_match") && !j["grids_match"].get<bool>()) text += ", new volume sampled trilinearly";
+  if (j.contains("placement_changes") && !j["placement_changes"].is_null() &&
+      j["placement_changes"]["reference_only"].get<std::int64_t>() > 0)
+    text += ", new volume sampled where it does not hold the reference's probe";
   text += "\n";
   text += fmt::format("{}; floor {:.4g}\n", kRelativeErrorDefinition, j["floor"].get<double>());
   if (j.contains("note")) text += fmt::format("note: {}\n", j["note"].get<std::string>());

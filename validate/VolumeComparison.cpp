@@ -60,10 +60,6 @@ std::int64_t probesOnlyIn(const AdaptiveVolume& volume, const AdaptiveVolume& ot
   return count;
 }
 
-Eigen::Vector3i indexOf(const ProbeGrid& g, std::int64_t p) {
-  return {int(p % g.dims.x()), int(p / g.dims.x() % g.dims.y()), int(p / (std::int64_t(g.dims.x()) * g.dims.y()))};
-}
-
 // How the new volume reads at one reference probe: its own probe there, or sampled.
 struct CandidateReading {
   const float* coefficients;
@@ -131,8 +127,8 @@ VolumeComparison compareVolumes(const AdaptiveVolume& reference, const AdaptiveV
     const Volume& r = reference.levels[std::size_t(level)];
     for (std::int64_t referenceRow = 0; referenceRow < r.rows.count(r.grid); ++referenceRow) {
       const std::int64_t p = r.rows.probeAt(r.grid, referenceRow);
-      const Eigen::Vector3i index = indexOf(r.grid, p);
-      const Eigen::Vector3d position = r.grid.position(index.x(), index.y(), index.z());
+      const Eigen::Vector3i index = r.grid.indexOf(p);
+      const Eigen::Vector3d position = r.grid.position(p);
       CandidateReading c{nullptr, nullptr, result.gridsMatch ? candidate.levels[std::size_t(level)].rowOf(p) : -1};
       if (c.row >= 0) {
         const Volume& v = candidate.levels[std::size_t(level)];

@@ -14,9 +14,8 @@ bool weighAgainstLeaks(const Volume& v, const Eigen::Vector3d& point, const Eige
     const std::int64_t row = interpolation.held[n];
     if (row < 0) continue;
     const std::int64_t p = v.rows.probeAt(g, row);
-    const Eigen::Vector3i probe(int(p % g.dims.x()), int(p / g.dims.x() % g.dims.y()),
-                                int(p / (std::int64_t(g.dims.x()) * g.dims.y())));
-    Eigen::Vector3d baked = g.position(probe.x(), probe.y(), probe.z());
+    const Eigen::Vector3i probe = g.indexOf(p);
+    Eigen::Vector3d baked = g.position(p);
     if (!v.offsets.empty()) baked += v.offsets[std::size_t(row)].cast<double>();
     const double leak = leakWeight(v.distanceMap, v.distanceMoments.data() + row * perProbe, baked, point, normal, g.spacing);
     if (corners) corners[n] = {probe, interpolation.weights[n], leak};

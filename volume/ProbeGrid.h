@@ -20,6 +20,14 @@ struct ProbeGrid {
   std::int64_t probeCount() const { return std::int64_t(dims.x()) * dims.y() * dims.z(); }
   std::int64_t linearIndex(int i, int j, int k) const { return i + std::int64_t(dims.x()) * (j + std::int64_t(dims.y()) * k); }
   Eigen::Vector3d position(int i, int j, int k) const { return origin + spacing * Eigen::Vector3d(i, j, k); }
+  // (i, j, k) of linear index p, and its position.
+  Eigen::Vector3i indexOf(std::int64_t p) const {
+    return {int(p % dims.x()), int(p / dims.x() % dims.y()), int(p / (std::int64_t(dims.x()) * dims.y()))};
+  }
+  Eigen::Vector3d position(std::int64_t p) const {
+    const Eigen::Vector3i index = indexOf(p);
+    return position(index.x(), index.y(), index.z());
+  }
   // Bricks per axis, the last one on each axis possibly partial.
   Eigen::Vector3i brickCounts() const { return (dims.array() + kBrickSize - 1) / kBrickSize; }
   std::int64_t brickCount() const { return brickCounts().cast<std::int64_t>().prod(); }
