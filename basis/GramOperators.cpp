@@ -145,13 +145,13 @@ class ShBandSubset : public SphericalFunctions {
 
 // ∫ f_i² dω for every function, with the piecewise quadrature of `order`.
 Eigen::VectorXd squaredNorms(const SphericalFunctions& f, int order) {
-  const DirectionSet q = piecewiseSphereQuadrature(order, f.kinkPlanes());
-  Eigen::VectorXd sum = Eigen::VectorXd::Zero(f.count()), values(f.count());
-  for (std::size_t k = 0; k < q.size(); ++k) {
-    f.evaluate(q.directions[k], values.data());
-    sum += q.weights[k] * values.cwiseAbs2();
-  }
-  return sum;
+  return sumOverSphereQuadrature(order, f.kinkPlanes(), f.count(), [&](const DirectionSet& nodes, Eigen::VectorXd* sum) {
+    Eigen::VectorXd values(f.count());
+    for (std::size_t k = 0; k < nodes.size(); ++k) {
+      f.evaluate(nodes.directions[k], values.data());
+      *sum += nodes.weights[k] * values.cwiseAbs2();
+    }
+  });
 }
 
 // Lobes far sharper than a quadrature piece fall between its nodes: the Gram matrix comes out

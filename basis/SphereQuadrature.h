@@ -1,5 +1,6 @@
 #pragma once
 #include <Eigen/Core>
+#include <functional>
 #include <vector>
 
 #include "basis/DirectionSet.h"
@@ -14,5 +15,12 @@ namespace baker {
 // icosahedron vertex, where the hybrid Bézier blend is only direction-continuous. On smooth
 // pieces the error falls exponentially with `order`; see SphereQuadratureTest.
 DirectionSet piecewiseSphereQuadrature(int order, const std::vector<Eigen::Vector3d>& kinkPlanes = {});
+
+// Σ over the same rule, without holding it (at order 24 on a finely cut tiling, tens of
+// megabytes whose first touch costs more than the sum): `add` sums over one piece's nodes into a
+// zeroed vector of `size`, piece by piece on several threads at once, and the pieces' sums are
+// added in piece order, so that any thread count gives the same bits.
+Eigen::VectorXd sumOverSphereQuadrature(int order, const std::vector<Eigen::Vector3d>& kinkPlanes, int size,
+                                        const std::function<void(const DirectionSet&, Eigen::VectorXd*)>& add);
 
 }  // namespace baker

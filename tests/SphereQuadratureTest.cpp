@@ -75,6 +75,31 @@ TEST(SphereQuadrature, ConvergesExponentiallyOnPiecewiseSmoothFunctions) {
   EXPECT_GT(undeclaredError, 1e-9);
 }
 
+// The sum that does not hold the rule: clamped lobes' integrals 2π/(p+1) for p = 2 and 4, with
+// their kinks cut, and the stored rule's sums to their rounding (summed in another order).
+TEST(SphereQuadrature, SumsPieceByPieceAsTheStoredRuleDoes) {
+  const ClampedLobes lobes(2, true);
+  const auto lobeIntegrals = [&](const DirectionSet& nodes, Eigen::VectorXd* sum) {
+    double values[3];
+    for (std::size_t k = 0; k < nodes.size(); ++k) {
+      lobes.evaluate(nodes.directions[k], values);
+      for (int i = 0; i < 3; ++i) {
+        (*sum)[i] += nodes.weights[k] * values[i];
+        (*sum)[3 + i] += nodes.weights[k] * values[i] * values[i];
+      }
+    }
+  };
+  const Eigen::VectorXd sums = sumOverSphereQuadrature(kExactQuadratureOrder, lobes.kinkPlanes(), 6, lobeIntegrals);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(sums[i], 2 * M_PI / 3, 1e-13);
+    EXPECT_NEAR(sums[3 + i], 2 * M_PI / 5, 1e-13);
+  }
+  const DirectionSet stored = piecewiseSphereQuadrature(kExactQuadratureOrder, lobes.kinkPlanes());
+  Eigen::VectorXd storedSums = Eigen::VectorXd::Zero(6);
+  lobeIntegrals(stored, &storedSums);
+  EXPECT_LT((sums - storedSums).cwiseAbs().maxCoeff(), 1e-13);
+}
+
 TEST(GramOperators, ClampedCosineBandsMatchTheKnownValues) {
   EXPECT_DOUBLE_EQ(clampedCosineBand(0), M_PI);
   EXPECT_DOUBLE_EQ(clampedCosineBand(1), 2 * M_PI / 3);
