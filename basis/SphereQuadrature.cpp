@@ -148,7 +148,7 @@ Eigen::VectorXd sumOverSphereQuadrature(int order, const std::vector<Eigen::Vect
   const std::vector<FlatPiece> pieces = tilingPieces(kinkPlanes);
   std::vector<Eigen::VectorXd> partial(pieces.size(), Eigen::VectorXd::Zero(size));
   tbb::parallel_for(std::size_t(0), pieces.size(), [&](std::size_t p) {
-    thread_local DirectionSet nodes;
+    DirectionSet nodes;  // its own for each piece: `add` may itself wait on other work in parallel
     nodes.directions.resize(nodeCount(pieces[p], rule));
     nodes.weights.resize(nodes.directions.size());
     pieceNodes(pieces[p], rule, nodes.directions.data(), nodes.weights.data());

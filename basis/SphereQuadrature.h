@@ -16,10 +16,10 @@ namespace baker {
 // pieces the error falls exponentially with `order`; see SphereQuadratureTest.
 DirectionSet piecewiseSphereQuadrature(int order, const std::vector<Eigen::Vector3d>& kinkPlanes = {});
 
-// Σ over the same rule, without holding it (at order 24 on a finely cut tiling, tens of
-// megabytes whose first touch costs more than the sum): `add` sums over one piece's nodes into a
-// zeroed vector of `size`, piece by piece on several threads at once, and the pieces' sums are
-// added in piece order, so that any thread count gives the same bits.
+// Σ over the same rule without holding it, for a sum that needs each node once: `add` sums over
+// one piece's nodes (valid during the call) into a zeroed vector of `size`, called for several
+// pieces at once from different threads, and the pieces' sums are added in piece order, so that
+// any thread count gives the same bits.
 Eigen::VectorXd sumOverSphereQuadrature(int order, const std::vector<Eigen::Vector3d>& kinkPlanes, int size,
                                         const std::function<void(const DirectionSet&, Eigen::VectorXd*)>& add);
 

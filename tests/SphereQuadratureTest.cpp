@@ -1,4 +1,5 @@
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include <Eigen/Dense>
 
@@ -76,7 +77,8 @@ TEST(SphereQuadrature, ConvergesExponentiallyOnPiecewiseSmoothFunctions) {
 }
 
 // The sum that does not hold the rule: clamped lobes' integrals 2π/(p+1) for p = 2 and 4, with
-// their kinks cut, and the stored rule's sums to their rounding (summed in another order).
+// their kinks cut, and the stored rule's sums to their rounding (summed in another order); the
+// same bits at any thread count.
 TEST(SphereQuadrature, SumsPieceByPieceAsTheStoredRuleDoes) {
   const ClampedLobes lobes(2, true);
   const auto lobeIntegrals = [&](const DirectionSet& nodes, Eigen::VectorXd* sum) {
@@ -98,6 +100,15 @@ TEST(SphereQuadrature, SumsPieceByPieceAsTheStoredRuleDoes) {
   Eigen::VectorXd storedSums = Eigen::VectorXd::Zero(6);
   lobeIntegrals(stored, &storedSums);
   EXPECT_LT((sums - storedSums).cwiseAbs().maxCoeff(), 1e-13);
+
+  // Filled and summed in parallel, both give the same bits on one thread.
+  const tbb::global_control oneThread(tbb::global_control::max_allowed_parallelism, 1);
+  const DirectionSet storedAlone = piecewiseSphereQuadrature(kExactQuadratureOrder, lobes.kinkPlanes());
+  EXPECT_TRUE(storedAlone.directions == stored.directions);
+  EXPECT_TRUE(storedAlone.weights == stored.weights);
+  const Eigen::VectorXd sumsAlone =
+      sumOverSphereQuadrature(kExactQuadratureOrder, lobes.kinkPlanes(), 6, lobeIntegrals);
+  EXPECT_TRUE(sumsAlone == sums);
 }
 
 TEST(GramOperators, ClampedCosineBandsMatchTheKnownValues) {
