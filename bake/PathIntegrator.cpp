@@ -134,6 +134,7 @@ struct PathIntegrator::Scratch {
   ScratchBuffer<float> emitterLanes;
   ScratchBuffer<SurfacePoint> emitterSurfaces;  // of the points on textured or alpha-tested emitters
   ScratchBuffer<float> pdfs;
+  ScratchBuffer<int> sources;  // the vertex each continuation leaves
   ScratchBuffer<Aimed> aimed;
   ScratchBuffer<double> aimWeights;  // of one vertex, per light aimed at
   ScratchBuffer<Ray> shadowRays;
@@ -188,6 +189,7 @@ void PathIntegrator::trace(const Eigen::Vector3f& position, std::uint64_t probeI
   const bool seeSky = settings_.environment && sky.emits();
   thread_local Scratch scratch;
   Vertex* vertices = scratch.vertices.reserve(std::size_t(count));
+  const std::uint64_t probeKey = PathRandom::probeKey(settings_.seed, probeId);
   int live = 0;
   Hit hits[8];
   SurfacePoint surfaces[8];
@@ -221,7 +223,7 @@ void PathIntegrator::trace(const Eigen::Vector3f& position, std::uint64_t probeI
                                               Eigen::Vector3f::Ones(), &v)) {
         v.path = ray;
         v.arrivalPdf = 0.0f;
-        v.random = PathRandom(settings_.seed, probeId, std::uint64_t(ray));
+        v.random = PathRandom(probeKey, std::uint64_t(ray));
         ++live;
       }
     }
@@ -498,9 +500,11 @@ void PathIntegrator::shadeAimedHits(const Ray* rays, const Aimed* aimed, int aim
   batch.resolve(tracer_, scratch, radiance, &counts->aimedBounceShadow);
 }
 
-int PathIntegrator::sampleContinuations(Vertex* vertices, int count, Ray* rays, float* bsdfPdf) const {
-  // The paths that go on are compacted in place (vertex k traces rays[k]), and so are the
-  // vertices their rays make: a vertex is written only over one already read.
+int PathIntegrator::sampleContinuations(Vertex* vertices, int count, Ray* rays, float* bsdfPdf, int* sources) const {
+  // The rays of the paths that go on are compacted to the front, each naming the vertex it
+  // leaves, in order: continuePaths writes the vertex ray i makes at index i or before, over one
+  // it has read or one no ray leaves. The vertices stay where they are (moved along with their
+  // rays, they were copied field by field).
   int survivors = 0;
   for (int first = 0; first < count; first += kLanes) {
     const int n = std::min(kLanes, count - first);
@@ -527,7 +531,7 @@ int PathIntegrator::sampleContinuations(Vertex* vertices, int count, Ray* rays, 
       rays[survivors] = {v.origin, {directions.x[j], directions.y[j], directions.z[j]}, 0.0f,
                          std::numeric_limits<float>::infinity()};
       bsdfPdf[survivors] = directions.cosine[j] * kInvPi;
-      if (survivors != k) vertices[survivors] = v;
+      sources[survivors] = k;
       ++survivors;
     }
   }
@@ -539,7 +543,8 @@ int PathIntegrator::continuePaths(Vertex* vertices, int count, bool keepVertices
                                   Eigen::Vector3f* radiance, Eigen::Vector3f* skyBounced, RayCounts* counts) const {
   Ray* rays = scratch.rays.reserve(std::size_t(count));
   float* bsdfPdf = scratch.pdfs.reserve(std::size_t(count));
-  const int survivors = sampleContinuations(vertices, count, rays, bsdfPdf);
+  int* sources = scratch.sources.reserve(std::size_t(count));
+  const int survivors = sampleContinuations(vertices, count, rays, bsdfPdf, sources);
   const Environment& sky = scene_.environment;
   Hit hits[8];
   SurfacePoint surfaces[8];
@@ -551,7 +556,7 @@ int PathIntegrator::continuePaths(Vertex* vertices, int count, bool keepVertices
     if (sampleEmitters_ || keepVertices) locateSurfaces(hits, n, surfaces);
     for (int i = 0; i < n; ++i) {
       // What the next vertex needs of this one, copied: it may take this one's place.
-      const Vertex& from = vertices[first + i];
+      const Vertex& from = vertices[sources[first + i]];
       const Eigen::Vector3f throughput = from.throughput;
       const int path = from.path;
       const PathRandom random = from.random;

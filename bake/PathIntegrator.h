@@ -77,8 +77,9 @@ class PathIntegrator {
   void shadeAimedHits(const Ray* rays, const Aimed* aimed, int aimedRays, Scratch& scratch, Eigen::Vector3f* radiance,
                       RayCounts* counts) const;
   // Draws each vertex's cosine-weighted continuation and plays Russian roulette; the survivors'
-  // rays and BSDF pdfs are compacted to the front. Returns how many survive.
-  int sampleContinuations(Vertex* vertices, int count, Ray* rays, float* bsdfPdf) const;
+  // rays and BSDF pdfs are compacted to the front, sources[i] the vertex ray i leaves (ascending).
+  // Returns how many survive.
+  int sampleContinuations(Vertex* vertices, int count, Ray* rays, float* bsdfPdf, int* sources) const;
   // Returns how many vertices the continued paths made (in place of the old ones).
   int continuePaths(Vertex* vertices, int count, bool keepVertices, Scratch& scratch, Eigen::Vector3f* radiance,
                     Eigen::Vector3f* skyBounced, RayCounts* counts) const;

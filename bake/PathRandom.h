@@ -8,8 +8,11 @@ namespace baker {
 // count. A splitmix64 stream: each draw advances a counter and scrambles it.
 class PathRandom {
  public:
-  PathRandom(std::uint64_t seed, std::uint64_t probe, std::uint64_t ray)
-      : state_(scramble(scramble(scramble(seed) ^ probe) ^ ray)) {}
+  PathRandom(std::uint64_t seed, std::uint64_t probe, std::uint64_t ray) : PathRandom(probeKey(seed, probe), ray) {}
+  // The part of the state that (seed, probe) alone decide: worked out once for a probe's paths,
+  // it saves each path two of its three scrambles.
+  static std::uint64_t probeKey(std::uint64_t seed, std::uint64_t probe) { return scramble(scramble(seed) ^ probe); }
+  PathRandom(std::uint64_t probeKey, std::uint64_t ray) : state_(scramble(probeKey ^ ray)) {}
 
   // Uniform in [0, 1), 24 bits: exactly representable in float, never 1.
   float uniform() { return float(next() >> 40) * (1.0f / 16777216.0f); }
