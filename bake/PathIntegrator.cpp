@@ -223,7 +223,7 @@ void PathIntegrator::trace(const Eigen::Vector3f& position, std::uint64_t probeI
                                               Eigen::Vector3f::Ones(), &v)) {
         v.path = ray;
         v.arrivalPdf = 0.0f;
-        v.random = PathRandom(probeKey, std::uint64_t(ray));
+        v.random = PathRandom::fromProbeKey(probeKey, std::uint64_t(ray));
         ++live;
       }
     }

@@ -8,11 +8,13 @@ namespace baker {
 // count. A splitmix64 stream: each draw advances a counter and scrambles it.
 class PathRandom {
  public:
-  PathRandom(std::uint64_t seed, std::uint64_t probe, std::uint64_t ray) : PathRandom(probeKey(seed, probe), ray) {}
+  PathRandom(std::uint64_t seed, std::uint64_t probe, std::uint64_t ray)
+      : state_(scramble(probeKey(seed, probe) ^ ray)) {}
   // The part of the state that (seed, probe) alone decide: worked out once for a probe's paths,
-  // it saves each path two of its three scrambles.
+  // it saves each path two of its three scrambles. fromProbeKey(probeKey(s, p), r) is
+  // PathRandom(s, p, r).
   static std::uint64_t probeKey(std::uint64_t seed, std::uint64_t probe) { return scramble(scramble(seed) ^ probe); }
-  PathRandom(std::uint64_t probeKey, std::uint64_t ray) : state_(scramble(probeKey ^ ray)) {}
+  static PathRandom fromProbeKey(std::uint64_t key, std::uint64_t ray) { return PathRandom(scramble(key ^ ray)); }
 
   // Uniform in [0, 1), 24 bits: exactly representable in float, never 1.
   float uniform() { return float(next() >> 40) * (1.0f / 16777216.0f); }
@@ -33,6 +35,7 @@ class PathRandom {
   }
 
  private:
+  explicit PathRandom(std::uint64_t state) : state_(state) {}
   std::uint64_t next() { return scramble(state_ += 0x632be59bd9b4e019ull); }
 
   std::uint64_t state_;

@@ -49,6 +49,31 @@ TEST(PathRandom, PairsAreUniformAndIndependent) {
   EXPECT_EQ(pairs.uniform(), scalars.uniform()) << "a pair advances the counter as one scalar draw does";
 }
 
+// A path's stream is splitmix64's (Steele, Lea and Flood 2014; its finaliser written out here
+// from the published constants) started at the scrambled (seed, probe, ray): volumes record it
+// as their sampler, so neither way of starting one, with the probe's part worked out per path or
+// once per probe (fromProbeKey), may move it by a bit.
+TEST(PathRandom, IsSplitMix64StartedAtTheScrambledSeedProbeAndRay) {
+  const auto mix = [](std::uint64_t z) {
+    z += 0x9e3779b97f4a7c15ull;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+  };
+  const std::uint64_t triples[][3] = {{0, 0, 0}, {1, 2, 3}, {7, 3071, 255}, {~0ull, 1ull << 40, 65535}};
+  for (const auto& t : triples) {
+    std::uint64_t state = mix(mix(mix(t[0]) ^ t[1]) ^ t[2]);
+    PathRandom direct(t[0], t[1], t[2]);
+    PathRandom keyed = PathRandom::fromProbeKey(PathRandom::probeKey(t[0], t[1]), t[2]);
+    for (int d = 0; d < 4; ++d) {
+      state += 0x632be59bd9b4e019ull;
+      const float expected = float(mix(state) >> 40) * (1.0f / 16777216.0f);
+      EXPECT_EQ(direct.uniform(), expected) << "seed " << t[0] << ", probe " << t[1] << ", ray " << t[2] << ", draw " << d;
+      EXPECT_EQ(keyed.uniform(), expected) << "seed " << t[0] << ", probe " << t[1] << ", ray " << t[2] << ", draw " << d;
+    }
+  }
+}
+
 // The integrator shades paths eight at a time in SIMD lanes, and compacts them as they end, so
 // a path shares lanes with different paths depending on how many are traced together. Its
 // radiance must still depend on (seed, probe, ray) alone, to the bit: that is what makes a bake
