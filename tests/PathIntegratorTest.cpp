@@ -49,10 +49,11 @@ TEST(PathRandom, PairsAreUniformAndIndependent) {
   EXPECT_EQ(pairs.uniform(), scalars.uniform()) << "a pair advances the counter as one scalar draw does";
 }
 
-// A path's stream is splitmix64's (Steele, Lea and Flood 2014; its finaliser written out here
-// from the published constants) started at the scrambled (seed, probe, ray): volumes record it
-// as their sampler, so neither way of starting one, with the probe's part worked out per path or
-// once per probe (fromProbeKey), may move it by a bit.
+// A path's stream is splitmix64's finaliser (Steele, Lea and Flood 2014; written out here from
+// its published constants) applied to a counter that advances by PathRandom's odd step, started
+// at the scrambled (seed, probe, ray): volumes record it as their sampler, so neither way of
+// starting one, with the probe's part worked out per path or once per probe (fromProbeKey), may
+// move it by a bit.
 TEST(PathRandom, IsSplitMix64StartedAtTheScrambledSeedProbeAndRay) {
   const auto mix = [](std::uint64_t z) {
     z += 0x9e3779b97f4a7c15ull;
