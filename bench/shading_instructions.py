@@ -151,7 +151,7 @@ def main():
     result = {
         "scene": os.path.basename(args.scene), "basis": args.basis, "rays_per_probe": args.rays,
         "rays_traced": rays, "instructions_per_ray": per_ray,
-        "shading_over_tracing": per_ray["shading"] / traced if traced else 0.0,
+        "shading_over_tracing": per_ray["shading"] / traced,
         "shading_per_ray_at_target": allowed,
         "shading_functions_per_ray": {fn: n / rays for fn, n in shading.most_common(args.top)},
     }
