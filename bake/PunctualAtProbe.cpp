@@ -51,10 +51,13 @@ void PunctualAtProbe::addExpansion(const SphericalFunctions& functions, const st
   const int count = functions.count();
   thread_local std::vector<double> y;
   y.resize(count);
+  const Eigen::Map<const Eigen::ArrayXd> values(y.data(), count);
   for (const Arrival& a : arrivals) {
     functions.evaluate(a.direction.cast<double>(), y.data());
+    // As arrays, two coefficients to an instruction: written as a loop through the pointer, every
+    // sum went back to memory in case it was one of the values.
     for (int c = 0; c < 3; ++c)
-      for (int i = 0; i < count; ++i) moments[c * count + i] += double(a.irradiance[c]) * y[i];
+      Eigen::Map<Eigen::ArrayXd>(moments + c * count, count) += double(a.irradiance[c]) * values;
   }
 }
 

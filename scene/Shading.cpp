@@ -32,19 +32,10 @@ Eigen::Vector4f baseColor(const SurfacePoint& p) {
 
 }  // namespace
 
-void locateSurface(const Scene& scene, std::uint32_t mesh, std::uint32_t triangle, float u, float v,
-                   SurfacePoint* point) {
+void locateTexels(SurfacePoint* point) {
   SurfacePoint& p = *point;
-  p.mesh = &scene.meshes[mesh];
-  p.material = &scene.materials[p.mesh->triangleMaterial[triangle]];
-  p.corners = &p.mesh->triangles[triangle];
-  p.w0 = 1.0f - u - v;
-  p.w1 = u;
-  p.w2 = v;
   const Material& m = *p.material;
-  p.baseColorImage = m.baseColorTexture.present() ? &scene.images[m.baseColorTexture.image] : nullptr;
   if (p.baseColorImage) p.baseColorTexels = texelsOf(*p.baseColorImage, m.baseColorTexture, p);
-  p.emissiveImage = m.emissiveTexture.present() && m.emissive() ? &scene.images[m.emissiveTexture.image] : nullptr;
   if (p.emissiveImage) p.emissiveTexels = texelsOf(*p.emissiveImage, m.emissiveTexture, p);
 }
 
@@ -53,7 +44,7 @@ void prefetchSurface(const SurfacePoint& p) {
   if (p.emissiveImage) p.emissiveImage->prefetch(p.emissiveTexels);
 }
 
-Eigen::Vector3f surfaceAlbedo(const SurfacePoint& p) { return baseColor(p).head<3>(); }
+Eigen::Vector3f variedAlbedo(const SurfacePoint& p) { return baseColor(p).head<3>(); }
 
 Eigen::Vector3f surfaceEmission(const SurfacePoint& p) {
   if (!p.emissiveImage) return p.material->emission;

@@ -31,17 +31,40 @@ struct SurfacePoint {
   ColorImage::Footprint baseColorTexels, emissiveTexels;
 };
 
+// The out-of-line parts of locateSurface and surfaceAlbedo below: where a point's textures are
+// read, and its albedo when a texture or vertex colours vary it.
+void locateTexels(SurfacePoint* point);
+Eigen::Vector3f variedAlbedo(const SurfacePoint& point);
+
 // Triangle `triangle` of `mesh` at the barycentric weights Embree reports: u for the
 // triangle's second corner, v for its third. Written in place, and only the texels of textures
 // the material has: a bake locates every hit, most often in untextured scenes, and a point
-// returned whole was copied through memory again.
-void locateSurface(const Scene& scene, std::uint32_t mesh, std::uint32_t triangle, float u, float v,
-                   SurfacePoint* point);
+// returned whole was copied through memory again. Inline, as is surfaceAlbedo, for the same
+// reason: in an untextured scene each is a few loads, which a call from another file cost as
+// much again.
+inline void locateSurface(const Scene& scene, std::uint32_t mesh, std::uint32_t triangle, float u, float v,
+                          SurfacePoint* point) {
+  SurfacePoint& p = *point;
+  p.mesh = &scene.meshes[mesh];
+  p.material = &scene.materials[p.mesh->triangleMaterial[triangle]];
+  p.corners = &p.mesh->triangles[triangle];
+  p.w0 = 1.0f - u - v;
+  p.w1 = u;
+  p.w2 = v;
+  const Material& m = *p.material;
+  p.baseColorImage = m.baseColorTexture.present() ? &scene.images[m.baseColorTexture.image] : nullptr;
+  p.emissiveImage = m.emissiveTexture.present() && m.emissive() ? &scene.images[m.emissiveTexture.image] : nullptr;
+  if (p.baseColorImage || p.emissiveImage) locateTexels(&p);
+}
+
 // Starts loading the texels a point's lookups will read, without waiting for them.
 void prefetchSurface(const SurfacePoint& point);
 // The albedo and the emission at a point on their own: each is a texture lookup, and a random
 // one costs a cache miss, so a path reads only the one it needs at each point.
-Eigen::Vector3f surfaceAlbedo(const SurfacePoint& point);
+inline Eigen::Vector3f surfaceAlbedo(const SurfacePoint& point) {
+  if (!point.baseColorImage && point.mesh->colors.empty()) return point.material->baseColor.head<3>();
+  return variedAlbedo(point);
+}
 Eigen::Vector3f surfaceEmission(const SurfacePoint& point);
 
 // Whether an alpha-tested surface stops a ray there. MASK: alpha ≥ alphaCutoff, as the glTF
