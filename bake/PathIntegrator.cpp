@@ -95,7 +95,8 @@ struct PathIntegrator::Vertex {
   Eigen::Vector3f normal;  // geometric, unit, on the side the path arrived from
   // The path's throughput to here times the albedo here: every estimate made at the vertex
   // scales by it, and it is the throughput its continuation carries on ((ρ/π)·cosθ over the
-  // pdf cosθ/π), so it is multiplied out once.
+  // pdf cosθ/π; divided by the survival chance when Russian roulette plays), so it is
+  // multiplied out once.
   Eigen::Vector3f scatteredThroughput;
   // Where the path came from and how: the previous vertex's ray origin, the direction, and
   // its cosine density there; 0 for a probe ray's first hit, which came from the lattice.
@@ -155,12 +156,9 @@ PathIntegrator::PathIntegrator(const Scene& scene, const RayTracer& tracer, cons
 
 float PathIntegrator::rayOffset(const Eigen::Vector3f& point) const { return surfaceRayOffset(point, sceneScale_); }
 
-// Always inlined: called once per path vertex, the call's own moving of arguments and saving of
-// registers cost a quarter as much as its work.
-[[gnu::always_inline]] inline bool PathIntegrator::makeVertex(const Hit& hit, const Eigen::Vector3f& albedo,
-                                                              const Eigen::Vector3f& origin,
-                                                              const Eigen::Vector3f& direction,
-                                                              const Eigen::Vector3f& throughput, Vertex* vertex) const {
+bool PathIntegrator::makeVertex(const Hit& hit, const Eigen::Vector3f& albedo, const Eigen::Vector3f& origin,
+                                const Eigen::Vector3f& direction, const Eigen::Vector3f& throughput,
+                                Vertex* vertex) const {
   if (!(albedo.maxCoeff() > 0.0f)) return false;
   const Eigen::Vector3f front = hit.frontNormal * (1.0f / hit.frontNormal.norm());
   const Eigen::Vector3f point = origin + hit.distance * direction;
@@ -333,7 +331,7 @@ void PathIntegrator::addEmitterEvents(Vertex* vertices, int count, Scratch& scra
   Scratch::EmitterPoint* points = scratch.points.reserve(std::size_t(count));
   SurfacePoint* surfaces = scratch.emitterSurfaces.reserve(std::size_t(count));
   // Written as each point is drawn, where the vertex and the emitter are at hand, rather than
-  // gathered lane by lane through their pointers. A short last block repeats its last point in
+  // gathered lane by lane through the vertex and emitter pointers. A short last block repeats its last point in
   // the lanes past it; what they compute is not read.
   const std::size_t padded = std::size_t((count + kLanes - 1) / kLanes * kLanes);
   float* lane = scratch.emitterLanes.reserve(kEmitterLaneArrays * padded);

@@ -54,8 +54,9 @@ void PunctualAtProbe::addExpansion(const SphericalFunctions& functions, const st
   const Eigen::Map<const Eigen::ArrayXd> values(y.data(), count);
   for (const Arrival& a : arrivals) {
     functions.evaluate(a.direction.cast<double>(), y.data());
-    // As arrays, two coefficients to an instruction: written as a loop through the pointer, every
-    // sum went back to memory in case it was one of the values.
+    // As arrays, two coefficients to an instruction: written as a loop, the compiler could not
+    // rule out that the moments overlap the values (they are separate buffers) and did not
+    // vectorise it.
     for (int c = 0; c < 3; ++c)
       Eigen::Map<Eigen::ArrayXd>(moments + c * count, count) += double(a.irradiance[c]) * values;
   }
