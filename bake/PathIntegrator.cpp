@@ -122,7 +122,8 @@ struct PathIntegrator::Scratch {
     int path;
     Eigen::Vector3f contribution;
   };
-  struct EmitterPoint {  // what shading a vertex's sampled point reads after its shadow ray's geometry
+  // What shading a vertex's sampled point reads once its shadow ray's geometry is worked out.
+  struct EmitterPoint {
     const EmitterSampler::Emitter* emitter;
     float xiCoverage;
   };
@@ -331,8 +332,8 @@ void PathIntegrator::addEmitterEvents(Vertex* vertices, int count, Scratch& scra
   Scratch::EmitterPoint* points = scratch.points.reserve(std::size_t(count));
   SurfacePoint* surfaces = scratch.emitterSurfaces.reserve(std::size_t(count));
   // Written as each point is drawn, where the vertex and the emitter are at hand, rather than
-  // gathered lane by lane through the vertex and emitter pointers. A short last block repeats its last point in
-  // the lanes past it; what they compute is not read.
+  // gathered lane by lane through the vertex and emitter pointers. A short last block repeats its
+  // last point in the lanes past it; what they compute is not read.
   const std::size_t padded = std::size_t((count + kLanes - 1) / kLanes * kLanes);
   float* lane = scratch.emitterLanes.reserve(kEmitterLaneArrays * padded);
   float *dxs = lane, *dys = lane + padded, *dzs = lane + 2 * padded, *nxs = lane + 3 * padded,
