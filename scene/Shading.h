@@ -39,9 +39,8 @@ Eigen::Vector3f variedAlbedo(const SurfacePoint& point);
 // Triangle `triangle` of `mesh` at the barycentric weights Embree reports: u for the
 // triangle's second corner, v for its third. Written in place, and only the texels of textures
 // the material has: a bake locates every hit, most often in untextured scenes, and a point
-// returned whole was copied through memory again. Inline, as is surfaceAlbedo, for the same
-// reason: in an untextured scene each is a few loads, which a call from another file cost as
-// much again.
+// returned whole was copied through memory again. Inline, as is surfaceAlbedo: in an untextured
+// scene each is a few loads, and a call from another file cost as much again.
 inline void locateSurface(const Scene& scene, std::uint32_t mesh, std::uint32_t triangle, float u, float v,
                           SurfacePoint* point) {
   SurfacePoint& p = *point;
