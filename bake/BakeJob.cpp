@@ -2,9 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <set>
 
 #include "bake/AdaptiveBaker.h"
 #include "bake/ProbeConvergence.h"
@@ -34,6 +36,7 @@ BakeSettings bakeSettings(const BakeRequest& request, std::vector<PlannedEffect>
   settings.projection.signal = parseStoredSignal(request.signal);
   settings.transport = transportSettings(plan, request.bounces, request.seed);
   settings.distanceMapSize = request.distanceMapSize();
+  settings.sharedReflectionCell = float(request.sharedReflectionCell);
   return settings;
 }
 
@@ -52,6 +55,8 @@ void recordSettings(const BakeJob& job, Volume& volume) {
   volume.settings["bounces"] = std::to_string(settings.transport.bounces);
   volume.settings["seed"] = std::to_string(request.seed);
   volume.settings["sampler"] = ProbeBaker::samplerName(settings);
+  if (settings.sharedReflectionCell > 0.0f)
+    volume.settings["share_reflections"] = fmt::format("{}", request.sharedReflectionCell);
   for (const PlannedEffect& e : job.plan()) volume.settings["effect." + e.name] = e.simulated ? "on" : "off";
   volume.settings["window"] = std::to_string(request.window.hannWidth);
   volume.settings["non_negative"] = request.nonNegative ? "true" : "false";
@@ -181,7 +186,26 @@ AdaptiveVolume BakeJob::bakeLevels(BakeStats* stats,
 }
 
 BakedProbes BakeJob::probesAt(const std::vector<Eigen::Vector3f>& positions) const {
-  return bakeProbesAt(*scene_, *tracer_, *basis_, settings_, grid_.spacing, positions);
+  if (!(settings_.sharedReflectionCell > 0.0f))
+    return bakeProbesAt(*scene_, *tracer_, *basis_, settings_, grid_.spacing, positions);
+  // Shared reflections: each probe shares with the grid's probes of a brick about it, as a
+  // probe of the grid would in a volume bake.
+  std::set<std::int64_t> around;
+  for (const Eigen::Vector3f& position : positions) {
+    const Eigen::Vector3d cell = (position.cast<double>() - grid_.origin) / grid_.spacing;
+    Eigen::Vector3i lo, hi;
+    for (int a = 0; a < 3; ++a) {
+      const int nearest = int(std::clamp(std::lround(cell[a]), 0L, long(grid_.dims[a] - 1)));
+      lo[a] = std::max(0, nearest - kBrickSize / 2);
+      hi[a] = std::min(grid_.dims[a], lo[a] + kBrickSize);
+    }
+    for (int k = lo.z(); k < hi.z(); ++k)
+      for (int j = lo.y(); j < hi.y(); ++j)
+        for (int i = lo.x(); i < hi.x(); ++i) around.insert(grid_.linearIndex(i, j, k));
+  }
+  std::vector<Eigen::Vector3f> neighbours;
+  for (const std::int64_t p : around) neighbours.push_back(grid_.position(p).cast<float>());
+  return bakeProbesAt(*scene_, *tracer_, *basis_, settings_, grid_.spacing, positions, neighbours);
 }
 
 }  // namespace baker

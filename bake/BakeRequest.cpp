@@ -42,6 +42,14 @@ void validateBakeRequest(const BakeRequest& r) {
                                                    kMaxDistanceMap, n));
   if (r.distanceMapSize() != 0 && r.adaptive())
     throw SettingError("distance_map", "applies to uniform placement only: adaptive volumes hold no distance maps yet");
+  const double cell = r.sharedReflectionCell, least = BakeRequest::kMinSharedReflectionCell,
+               most = BakeRequest::kMaxSharedReflectionCell;
+  if (!(cell == 0.0 || (cell >= least && cell <= most)))
+    throw SettingError("share_reflections",
+                       fmt::format("must be a side in metres from {} to {} (or 0: none), got {}", least, most, cell));
+  if (r.sharedReflectionCell > 0.0 && !r.quality.empty())
+    throw SettingError("share_reflections", "needs a fixed ray count: a quality preset decides each probe's "
+                                                 "rays from its own noise, which sharing changes");
   const StoredSignal signal = parseStoredSignal(r.signal);
   if (signal == StoredSignal::Radiance && r.window.hannWidth > 0)
     throw SettingError("window", "fades the SH bands of the irradiance fit; a radiance volume fits the samples in "

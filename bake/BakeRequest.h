@@ -36,6 +36,11 @@ struct BakeRequest {
   // target. Empty: every probe traces `rays` directions, no more and no fewer.
   std::string quality = kDefaultQuality;
   int rays = 256;
+  // Metres: the probes of a brick share what their paths bring back from surfaces, averaged
+  // over cells of this side (bake/SharedReflections.h). Fixed ray counts only; 0: each probe
+  // keeps its own.
+  double sharedReflectionCell = 0.0;
+  static constexpr double kMinSharedReflectionCell = 1e-4, kMaxSharedReflectionCell = 1e4;
   int bounces = kDefaultBounces;
   std::uint64_t seed = 0;
   int threads = 0;                     // 0: every core; the result does not depend on it

@@ -186,7 +186,9 @@ const SurfacePoint& PathIntegrator::surfaceAt(const Hit& hit, SurfacePoint* loca
 
 void PathIntegrator::trace(const Eigen::Vector3f& position, std::uint64_t probeId, const Eigen::Vector3f* directions,
                            int count, Eigen::Vector3f* radiance, float* visibility, RayCounts* counts,
-                           const ProbeView* directView, float* hitDistance, Eigen::Vector3f* skyBounced) const {
+                           const ProbeView* directView, float* hitDistance, Eigen::Vector3f* skyBounced,
+                           FirstReflection* firstReflections, Eigen::Vector3f* reflected,
+                           Eigen::Vector3f* reflectedSky) const {
   const Environment& sky = scene_.environment;
   const bool seeSky = settings_.environment && sky.emits();
   thread_local Scratch scratch;
@@ -205,6 +207,9 @@ void PathIntegrator::trace(const Eigen::Vector3f& position, std::uint64_t probeI
       const Hit& hit = hits[i];
       radiance[ray].setZero();
       if (skyBounced) skyBounced[ray].setZero();
+      if (reflected) reflected[ray].setZero();
+      if (reflectedSky) reflectedSky[ray].setZero();
+      if (firstReflections) firstReflections[ray] = FirstReflection{};
       visibility[ray] = hit.missed() ? 1.0f : 0.0f;
       if (hitDistance) hitDistance[ray] = hit.missed() ? std::numeric_limits<float>::infinity() : hit.distance;
       if (hit.missed()) {
@@ -220,9 +225,11 @@ void PathIntegrator::trace(const Eigen::Vector3f& position, std::uint64_t probeI
         radiance[ray] = surfaceEmission(surface);
         if (directView) radiance[ray] *= directView->sampler->latticeEmitterWeight(*directView, hit, directions[ray]);
       }
+      if (settings_.bounces == 0) continue;
       Vertex& v = vertices[live];
-      if (settings_.bounces > 0 && makeVertex(hit, surfaceAlbedo(surface), position, directions[ray],
-                                              Eigen::Vector3f::Ones(), &v)) {
+      const Eigen::Vector3f albedo = surfaceAlbedo(surface);
+      if (makeVertex(hit, albedo, position, directions[ray], Eigen::Vector3f::Ones(), &v)) {
+        if (firstReflections) firstReflections[ray] = {v.origin, v.normal, albedo, hit.instance, hit.frontFace, true};
         v.path = ray;
         v.arrivalPdf = 0.0f;
         v.random = PathRandom::fromProbeKey(probeKey, std::uint64_t(ray));
@@ -233,14 +240,20 @@ void PathIntegrator::trace(const Eigen::Vector3f& position, std::uint64_t probeI
   // The last reflection still needs its continuation ray when emitters or the sky are
   // combined with it by MIS: the ray may find them.
   const bool lastContinuation = sampleEmitters_ || sampleEnvironment_;
+  // What the first hit receives after another reflection goes to `reflected` when asked for:
+  // the estimates made at the second vertex on, and the aimed rays', which share with them.
+  Eigen::Vector3f* beyond = reflected ? reflected : radiance;
+  Eigen::Vector3f* skyBeyond = reflected ? reflectedSky : skyBounced;
   for (int bounce = 1; bounce <= settings_.bounces && live > 0; ++bounce) {
     if (bounce == 1)
       addNextEvents(vertices, live, scratch, radiance, skyBounced, counts, directView, directions);
     else
-      addNextEvents(vertices, live, scratch, radiance, skyBounced, counts);
+      addNextEvents(vertices, live, scratch, beyond, skyBeyond, counts);
     if (bounce == settings_.bounces && !lastContinuation) break;
-    if (aimFromVertices_ && bounce < settings_.bounces) aimAtLights(vertices, live, scratch, radiance, counts);
-    live = continuePaths(vertices, live, bounce < settings_.bounces, scratch, radiance, skyBounced, counts);
+    if (aimFromVertices_ && bounce < settings_.bounces) aimAtLights(vertices, live, scratch, beyond, counts);
+    // What the continuation finds by MIS (an emitter, the sky) belongs with its vertex's next events.
+    live = continuePaths(vertices, live, bounce < settings_.bounces, scratch, bounce == 1 ? radiance : beyond,
+                         bounce == 1 ? skyBounced : skyBeyond, counts);
   }
 }
 

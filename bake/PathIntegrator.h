@@ -13,6 +13,17 @@ namespace baker {
 struct SurfacePoint;
 struct ProbeView;
 
+// Where a probe ray's first reflection happened, for estimators that share what paths bring back
+// from surfaces between probes (SharedReflections).
+struct FirstReflection {
+  Eigen::Vector3f point = Eigen::Vector3f::Zero();   // the vertex's ray origin
+  Eigen::Vector3f normal = Eigen::Vector3f::Zero();  // unit, on the side the probe ray arrived from
+  Eigen::Vector3f albedo = Eigen::Vector3f::Zero();
+  std::uint32_t instance = 0;
+  bool frontFace = false;
+  bool reflects = false;  // false: the ray escaped, or its hit reflects nothing
+};
+
 // Radiance arriving at a probe along fixed directions, one Lambertian path per direction.
 //
 // A probe ray returns what it meets: emission (single-sided surfaces emit from the front), or
@@ -40,11 +51,17 @@ class PathIntegrator {
   // `hitDistance`, hitDistance[i] is how far ray i went to its first hit (+∞ when it escaped).
   // With `skyBounced`, skyBounced[i] is the part of radiance[i] that is the sky's light after one
   // reflection or more (its next-event terms and the continuations that escaped): what a new sky
-  // would change beside the sky seen directly.
+  // would change beside the sky seen directly. With `firstReflections` and `reflected`, the first
+  // hit of ray i is described in firstReflections[i], and what its path brought back from that
+  // hit after another reflection or more (every estimate made from the second vertex on; the
+  // first hit's own next events and what its continuation finds by MIS stay in radiance[i])
+  // goes to reflected[i] instead of radiance[i] (`reflected` alone decides it); its sky part to
+  // reflectedSky[i] instead of skyBounced[i], so with skyBounced, give reflectedSky too.
   void trace(const Eigen::Vector3f& position, std::uint64_t probeId, const Eigen::Vector3f* directions, int count,
              Eigen::Vector3f* radiance, float* visibility, RayCounts* counts,
              const ProbeView* directView = nullptr, float* hitDistance = nullptr,
-             Eigen::Vector3f* skyBounced = nullptr) const;
+             Eigen::Vector3f* skyBounced = nullptr, FirstReflection* firstReflections = nullptr,
+             Eigen::Vector3f* reflected = nullptr, Eigen::Vector3f* reflectedSky = nullptr) const;
 
   const EmitterSampler& emitters() const { return emitters_; }
   const LightAim& lightAim() const { return lightAim_; }

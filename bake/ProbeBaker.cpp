@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <mutex>
 #include <numeric>
 #include <optional>
@@ -444,8 +445,16 @@ struct ProbeBaker::RotationBlocks {
 
 void ProbeBaker::traceLattice(const ProbeTask& task, const RotationBlocks& rotations, int s, SampleColumns& columns,
                               std::vector<PunctualAtProbe::Arrival>* direct, RayCounts* counts,
-                              ProbeSamples* samples, DistanceMomentsAccumulator* distances) const {
+                              ProbeSamples* samples, DistanceMomentsAccumulator* distances,
+                              SharedReflections* shared, int sharedSlot) const {
   const int rays = settings_.rays;
+  thread_local std::vector<FirstReflection> firstReflections;
+  thread_local std::vector<Eigen::Vector3f> reflected, reflectedSky;
+  if (shared) {
+    firstReflections.resize(rays);
+    reflected.resize(rays);
+    reflectedSky.resize(rays);
+  }
   thread_local std::vector<Eigen::Vector3f> radiance, bounced;
   thread_local std::vector<float> sky;
   radiance.resize(rays);
@@ -459,7 +468,10 @@ void ProbeBaker::traceLattice(const ProbeTask& task, const RotationBlocks& rotat
   hitDistance.resize(rays);
   const int skyParts = (rotations.width - 4) / 3;
   integrator_.trace(task.position, task.id, dirs.data(), rays, radiance.data(), sky.data(), counts, &view,
-                    distances ? hitDistance.data() : nullptr, skyParts > 1 ? bounced.data() : nullptr);
+                    distances ? hitDistance.data() : nullptr, skyParts > 1 ? bounced.data() : nullptr,
+                    shared ? firstReflections.data() : nullptr, shared ? reflected.data() : nullptr,
+                    shared && skyParts > 1 ? reflectedSky.data() : nullptr);
+  if (shared) shared->record(sharedSlot, firstReflections.data(), reflected.data(), reflectedSky.data());
   if (distances && !distanceWeights_.empty())
     distances->add(distanceWeights_.at(std::size_t(block.rotation)), hitDistance.data());
   else if (distances)
@@ -484,6 +496,31 @@ void ProbeBaker::traceLattice(const ProbeTask& task, const RotationBlocks& rotat
     samples->radiance = radiance;
     samples->visibility = sky;
   }
+}
+
+void ProbeBaker::addSharedReflections(SharedReflections& shared, int begin, int end, const RotationBlocks& rotations,
+                                      SampleColumns& columns, std::vector<ProbeSamples>* samples) const {
+  shared.share();
+  const bool skyBounced = rotations.width > 7;
+  const auto addToProbe = [&](int s) {
+    const RotationBlocks::Block& block = rotations.blocks[rotations.blockOf[s]];
+    const int within = s - block.first;
+    const int base = rotations.width * block.first;
+    ProbeSamples* probeSamples = samples ? &(*samples)[rotations.order[s]] : nullptr;
+    for (int r = 0; r < settings_.rays; ++r) {
+      const Eigen::Vector3f light = shared.reflected(s - begin, r);
+      const Eigen::Vector3f value = toColorSpace(basis_.colorSpace(), light);
+      for (int c = 0; c < 3; ++c) columns(r, base + c * block.count + within) += value[c];
+      if (skyBounced) {
+        const Eigen::Vector3f sky = toColorSpace(basis_.colorSpace(), shared.skyBounced(s - begin, r));
+        for (int c = 0; c < 3; ++c) columns(r, base + (7 + c) * block.count + within) += sky[c];
+      }
+      if (probeSamples) probeSamples->radiance[std::size_t(r)] += light;
+    }
+  };
+  // Isolated as the tracing is: a thread waiting here must not start another brick, whose bake
+  // would reuse this thread's sample store.
+  tbb::this_task_arena::isolate([&] { tbb::parallel_for(begin, end, addToProbe); });
 }
 
 void ProbeBaker::projectLattice(const SampleColumns& columns, const RotationBlocks& rotations, float* coefficients,
@@ -587,6 +624,48 @@ int ProbeBaker::skyPartsKept(const float* skyDirect, const float* skyBounced) co
   return skyBounced ? 2 : skyDirect ? 1 : 0;
 }
 
+// What the probes of one bake() call write to, shared by the threads that trace them.
+struct ProbeBaker::BrickPass {
+  const std::vector<ProbeTask>& tasks;
+  const RotationBlocks& rotations;
+  SampleColumns& columns;
+  std::vector<ProbeSamples>* samples;
+  const DistanceMomentsOutput& distances;
+  ArrivalExpansion &punctualArrivals, &directArrivals, &skyArrivals;
+  Eigen::MatrixXd& latticeExpansion;  // adaptive convergence's
+  int skyParts;
+  bool punctualAtProbe;       // the punctual lights each probe sees are added as deltas
+  SharedReflections* shared;  // with shared reflections, and the first probe of the group being traced
+  int groupStart = 0;
+};
+
+void ProbeBaker::traceProbe(BrickPass& pass, int s, RayCounts* counts, RoundTally* tally,
+                            DistanceMomentsAccumulator* moments) const {
+  const int taskIndex = pass.rotations.order[s];
+  const ProbeTask& task = pass.tasks[taskIndex];
+  ProbeSamples* probeSamples = pass.samples ? &(*pass.samples)[taskIndex] : nullptr;
+  std::vector<PunctualAtProbe::Arrival> lights, direct;
+  if (pass.punctualAtProbe) lights = punctual_.visibleLights(task.position, counts);
+  if (moments) moments->reset();
+  if (settings_.convergence.adaptive()) {
+    const Rounds rounds = traceRounds(task, lights, &direct, pass.latticeExpansion, taskIndex, int(pass.tasks.size()),
+                                      pass.skyParts, counts, probeSamples, moments);
+    tally->add(rounds.rays, !rounds.converged);
+  } else {
+    traceLattice(task, pass.rotations, s, pass.columns, &direct, counts, probeSamples, moments, pass.shared,
+                 s - pass.groupStart);
+    tally->add(settings_.rays, false);
+  }
+  if (moments) moments->write(pass.distances.values + std::size_t(taskIndex) * pass.distances.layout.valuesPerProbe());
+  pass.punctualArrivals.add(lights, taskIndex, basis_.colorSpace());
+  pass.directArrivals.add(direct, taskIndex, basis_.colorSpace());
+  if (pass.skyParts > 0) pass.skyArrivals.add(DirectView::fromSky(direct), taskIndex, basis_.colorSpace());
+  if (probeSamples) {
+    probeSamples->punctual = std::move(lights);
+    probeSamples->direct = std::move(direct);
+  }
+}
+
 void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, float* visibility, RayCounts* counts,
                       std::vector<ProbeSamples>* samples, RoundTally* tally,
                       const DistanceMomentsOutput& distances, float* skyDirect, float* skyBounced) const {
@@ -610,62 +689,69 @@ void ProbeBaker::bake(const std::vector<ProbeTask>& tasks, float* coefficients, 
   // channels (count × (4 + 3 parts)p, channel-major like directArrivals).
   Eigen::MatrixXd latticeExpansion;
   if (adaptive) latticeExpansion.setZero(directExpansion_->count(), rotations.width * p);
+  std::optional<SharedReflections> shared;
+  if (!adaptive && settings_.sharedReflectionCell > 0.0f)
+    shared.emplace(settings_.sharedReflectionCell, settings_.rays, skyParts > 1);
+  BrickPass pass{tasks,          rotations,      columns,          samples,  distances,
+                 punctualArrivals, directArrivals, skyArrivals,    latticeExpansion, skyParts,
+                 punctualAtProbe, shared ? &*shared : nullptr};
 
   // A probe's samples depend on nothing but the probe, so they are traced a few probes per task:
   // a volume of a few bricks keeps every thread busy to the end, where whole bricks would leave
   // one thread finishing the last brick alone. Isolated, so that a thread waiting here takes
   // only this brick's probes, never another brick, whose bake would reuse this thread's store.
   std::mutex countsMutex;
-  tbb::this_task_arena::isolate([&] {
-    tbb::parallel_for(tbb::blocked_range<int>(0, p, kProbesPerTask), [&](const tbb::blocked_range<int>& range) {
-      RayCounts rangeCounts;
-      RoundTally rangeTally;
-      std::optional<DistanceMomentsAccumulator> moments;
-      if (distances.values) moments.emplace(distances.layout);
-      for (int s = range.begin(); s < range.end(); ++s) {
-        const int taskIndex = rotations.order[s];
-        const ProbeTask& task = tasks[taskIndex];
-        ProbeSamples* probeSamples = samples ? &(*samples)[taskIndex] : nullptr;
-        std::vector<PunctualAtProbe::Arrival> lights, direct;
-        if (punctualAtProbe) lights = punctual_.visibleLights(task.position, &rangeCounts);
-        DistanceMomentsAccumulator* probeMoments = moments ? &*moments : nullptr;
-        if (probeMoments) probeMoments->reset();
-        if (adaptive) {
-          const Rounds rounds = traceRounds(task, lights, &direct, latticeExpansion, taskIndex, p, skyParts,
-                                            &rangeCounts, probeSamples, probeMoments);
-          rangeTally.add(rounds.rays, !rounds.converged);
-        } else {
-          traceLattice(task, rotations, s, columns, &direct, &rangeCounts, probeSamples, probeMoments);
-          rangeTally.add(settings_.rays, false);
-        }
-        if (probeMoments)
-          probeMoments->write(distances.values + std::size_t(taskIndex) * distances.layout.valuesPerProbe());
-        punctualArrivals.add(lights, taskIndex, basis_.colorSpace());
-        directArrivals.add(direct, taskIndex, basis_.colorSpace());
-        if (keepSky) skyArrivals.add(DirectView::fromSky(direct), taskIndex, basis_.colorSpace());
-        if (probeSamples) {
-          probeSamples->punctual = std::move(lights);
-          probeSamples->direct = std::move(direct);
-        }
-      }
-      const std::lock_guard<std::mutex> lock(countsMutex);
-      *counts += rangeCounts;  // integers: the same totals in any order
-      if (tally) *tally += rangeTally;
+  const auto traceProbes = [&](int begin, int end) {
+    tbb::this_task_arena::isolate([&] {
+      tbb::parallel_for(tbb::blocked_range<int>(begin, end, kProbesPerTask), [&](const tbb::blocked_range<int>& range) {
+        RayCounts rangeCounts;
+        RoundTally rangeTally;
+        std::optional<DistanceMomentsAccumulator> moments;
+        if (distances.values) moments.emplace(distances.layout);
+        for (int s = range.begin(); s < range.end(); ++s)
+          traceProbe(pass, s, &rangeCounts, &rangeTally, moments ? &*moments : nullptr);
+        const std::lock_guard<std::mutex> lock(countsMutex);
+        *counts += rangeCounts;  // integers: the same totals in any order
+        if (tally) *tally += rangeTally;
+      });
     });
-  });
+  };
+  if (shared)
+    traceInGroups(*shared, p, rotations, columns, samples, &pass.groupStart, traceProbes);
+  else
+    traceProbes(0, p);
 
   const auto projectionStart = std::chrono::steady_clock::now();
   if (adaptive)
     projectLatticeExpansion(latticeExpansion, p, coefficients, visibility, skyDirect, skyBounced);
   else
     projectLattice(columns, rotations, coefficients, visibility, skyDirect, skyBounced);
-  if (punctualArrivals.any) projectExpansion(&ChannelGroup::fromPunctual, punctualArrivals.values, p, coefficients, true);
-  if (directArrivals.any) projectExpansion(&ChannelGroup::fromDirect, directArrivals.values, p, coefficients, true);
-  if (skyArrivals.any) projectExpansion(&ChannelGroup::fromDirect, skyArrivals.values, p, skyDirect, true);
+  projectArrivals(punctualArrivals, directArrivals, skyArrivals, p, coefficients, skyDirect);
   if (settings_.projection.nonNegative) constrainNonNegative(p, coefficients, visibility);
   projectionNanoseconds_ += std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() -
                                                                                  projectionStart)
                                 .count();
+}
+
+void ProbeBaker::traceInGroups(SharedReflections& shared, int p, const RotationBlocks& rotations,
+                               SampleColumns& columns, std::vector<ProbeSamples>* samples, int* groupStart,
+                               const std::function<void(int, int)>& traceProbes) const {
+  // Probes share within groups of consecutive ones (in rotation order) whose samples fit
+  // SharedReflections' memory; a group is traced whole before its reflections are shared.
+  const int group = SharedReflections::groupProbes(settings_.rays, rotations.width > 7);
+  for (*groupStart = 0; *groupStart < p; *groupStart += group) {
+    const int groupEnd = std::min(p, *groupStart + group);
+    shared.startGroup(groupEnd - *groupStart);
+    traceProbes(*groupStart, groupEnd);
+    addSharedReflections(shared, *groupStart, groupEnd, rotations, columns, samples);
+  }
+}
+
+void ProbeBaker::projectArrivals(const ArrivalExpansion& punctual, const ArrivalExpansion& direct,
+                                 const ArrivalExpansion& sky, int p, float* coefficients, float* skyDirect) const {
+  if (punctual.any) projectExpansion(&ChannelGroup::fromPunctual, punctual.values, p, coefficients, true);
+  if (direct.any) projectExpansion(&ChannelGroup::fromDirect, direct.values, p, coefficients, true);
+  if (sky.any) projectExpansion(&ChannelGroup::fromDirect, sky.values, p, skyDirect, true);
 }
 
 }  // namespace baker

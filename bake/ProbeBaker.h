@@ -3,6 +3,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -10,6 +11,7 @@
 #include "bake/PathIntegrator.h"
 #include "bake/ProbeConvergence.h"
 #include "bake/PunctualAtProbe.h"
+#include "bake/SharedReflections.h"
 #include "bake/Transport.h"
 #include "basis/Basis.h"
 #include "basis/DirectionSet.h"
@@ -34,6 +36,9 @@ struct BakeSettings {
   int rays = 256;  // a fixed count, or with adaptive convergence the size of round 0's lattices
   // Texels per side of each probe's distance map (volume/DistanceMoments.h); 0: none.
   int distanceMapSize = 0;
+  // Side of the cells in which a brick's probes share what their paths bring back from surfaces
+  // (SharedReflections); 0: each probe keeps its own.
+  float sharedReflectionCell = 0.0f;
   int distanceValuesPerProbe() const { return DistanceMapLayout::baked(distanceMapSize, 0.0).valuesPerProbe(); }
   ConvergenceSettings convergence;
   ProjectionOptions projection;
@@ -192,7 +197,23 @@ class ProbeBaker {
   // The probe's fixed lattice, traced into its columns, with its direct-view samples.
   void traceLattice(const ProbeTask& task, const RotationBlocks& rotations, int s, SampleColumns& columns,
                     std::vector<PunctualAtProbe::Arrival>* direct, RayCounts* counts, ProbeSamples* samples,
-                    DistanceMomentsAccumulator* distances) const;
+                    DistanceMomentsAccumulator* distances, SharedReflections* shared, int sharedSlot) const;
+  struct BrickPass;
+  // Probe s (in rotation order) of a bake() call, traced into what `pass` holds for it.
+  void traceProbe(BrickPass& pass, int s, RayCounts* counts, RoundTally* tally,
+                  DistanceMomentsAccumulator* moments) const;
+  // Traces the p probes by traceProbes(begin, end) in groups that share their reflections,
+  // *groupStart the first probe of the group being traced.
+  void traceInGroups(SharedReflections& shared, int p, const RotationBlocks& rotations, SampleColumns& columns,
+                     std::vector<ProbeSamples>* samples, int* groupStart,
+                     const std::function<void(int, int)>& traceProbes) const;
+  // The punctual lights', direct-view and directly seen sky's arrivals, added to the coefficients.
+  void projectArrivals(const ArrivalExpansion& punctual, const ArrivalExpansion& direct, const ArrivalExpansion& sky,
+                       int p, float* coefficients, float* skyDirect) const;
+  // Shares the reflections of probes [begin, end) (in rotation order), recorded in `shared`, and
+  // adds to each lattice ray's columns what it reflects of its cell's mean.
+  void addSharedReflections(SharedReflections& shared, int begin, int end, const RotationBlocks& rotations,
+                            SampleColumns& columns, std::vector<ProbeSamples>* samples) const;
   void projectLattice(const SampleColumns& columns, const RotationBlocks& rotations, float* coefficients,
                       float* visibility, float* skyDirect, float* skyBounced) const;
   void projectLatticeExpansion(Eigen::MatrixXd& latticeExpansion, int p, float* coefficients, float* visibility,

@@ -33,12 +33,22 @@ BakedProbes bakeTasks(const Scene& scene, const RayTracer& tracer, const Basis& 
 }
 
 BakedProbes bakeProbesAt(const Scene& scene, const RayTracer& tracer, const Basis& basis, const BakeSettings& settings,
-                         double spacing, const std::vector<Eigen::Vector3f>& positions) {
+                         double spacing, const std::vector<Eigen::Vector3f>& positions,
+                         const std::vector<Eigen::Vector3f>& neighbours) {
   std::int64_t validityRays = 0;
   std::vector<ProbePlacement> placements = placeProbes(tracer, settings.transport, spacing, positions, &validityRays);
   std::vector<ProbeTask> tasks;
   for (std::size_t i = 0; i < positions.size(); ++i) tasks.push_back({positions[i] + placements[i].offset, i, 0});
+  const std::vector<ProbePlacement> around = placeProbes(tracer, settings.transport, spacing, neighbours, &validityRays);
+  for (std::size_t i = 0; i < neighbours.size(); ++i)
+    if (around[i].state != ProbeState::Invalid)
+      tasks.push_back({neighbours[i] + around[i].offset, positions.size() + i, 0});
   BakedProbes baked = bakeTasks(scene, tracer, basis, settings, std::move(tasks));
+  const std::size_t n = positions.size();  // the neighbours' results are not returned
+  baked.tasks.resize(n);
+  baked.samples.resize(n);
+  baked.coefficients.resize(n * std::size_t(baked.coefficientsPerProbe));
+  baked.visibility.resize(n * std::size_t(baked.visibilityPerProbe));
   baked.placements = std::move(placements);
   baked.rays.validity += validityRays;
   return baked;

@@ -34,8 +34,11 @@ BakedProbes bakeTasks(const Scene& scene, const RayTracer& tracer, const Basis& 
                       std::vector<ProbeTask> tasks);
 
 // placeProbes, then bakeTasks: probe i traced from where it was placed (an invalid one where it
-// stands), with id i and rotation 0.
+// stands), with id i and rotation 0. `neighbours` are placed and traced with them (ids from
+// positions.size() on; invalid ones left out) and not returned: with shared reflections, the
+// probes whose paths they share.
 BakedProbes bakeProbesAt(const Scene& scene, const RayTracer& tracer, const Basis& basis, const BakeSettings& settings,
-                         double spacing, const std::vector<Eigen::Vector3f>& positions);
+                         double spacing, const std::vector<Eigen::Vector3f>& positions,
+                         const std::vector<Eigen::Vector3f>& neighbours = {});
 
 }  // namespace baker

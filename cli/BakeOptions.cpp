@@ -26,6 +26,10 @@ void addBakeOptions(CLI::App& app, BakeOptions& o, bool listed) {
                         ->capture_default_str();
     app.add_option("--rays", r.rays, "a fixed number of directions per probe, one path each, in place of --quality")
         ->excludes(quality);
+    app.add_option("--share-reflections", r.sharedReflectionCell,
+                   "SIZE in metres: with --rays, the probes of a brick share what their paths bring back from "
+                   "surfaces, averaged over cells of SIZE (less noise for a bias of the light's variation across a "
+                   "cell; docs/SAMPLING.md); 0: none");
     app.add_option("--bounces", r.bounces,
                    "diffuse reflections per path: 0 = emission and sky seen directly, 1 = adds the direct lighting "
                    "of the first surface hit")

@@ -4,7 +4,7 @@
     scripts/cycles_time_to_error.py [--scene cornell_box] [--baker build/baker] [--threads 2]
         [--rays 4096,8192,16384,32768,65536] [--seeds 32] [--spp 2,4,8,16,32] [--cycles-seeds 8]
         [--res 128x64] [--target 0.01] [--volume-spacing 0.7] [--converged-rays 1048576] [--correct-pixel-bias]
-        [--json OUT.json]
+        [--share-reflections SIZE] [--json OUT.json]
 
 Both renderers are measured against the same truth: the Cycles reference irradiance of
 ../shared/data/reference/<scene>.json (its setting with --cycles-bounces, default 2: 2 x 1024
@@ -29,6 +29,9 @@ Time per probe:
           divided by its probes: what a probe costs in a bake. The operators, worked out once per
           bake whatever its size, and the load and write are left out (reported as
           operators_seconds).
+          With --share-reflections SIZE the baker's probes share their reflections
+          (docs/SAMPLING.md): `baker probe` with each probe's brick of the grid at
+          --volume-spacing about it, the volume bake within its bricks.
   Cycles  reference_probe.py's per-probe wall seconds (Blender's start-up and the scene import
           are left out), the panorama at --res and the given samples per pixel.
 Both use --threads threads. Between two settings on either side of the target, error and time are
@@ -67,18 +70,28 @@ def seed_rms(errors_by_seed):
 def baker_row(args, scene, probes, reference, converged, bounces, rays):
     errors, noise = [], []
     for seed in range(args.seeds):
-        measured = baker_axes(args.baker, scene, probes, rays, bounces, seed, args.threads)
+        measured = baker_axes(args.baker, scene, probes, rays, bounces, seed, args.threads, sharing(args, True))
         errors.append([probe_error(m, ref) for m, ref in zip(measured, reference)])
         noise.append([probe_error(m, ref) for m, ref in zip(measured, converged)])
     with tempfile.TemporaryDirectory() as tmp:
         bake = json.loads(run([args.baker, scene, "--rays", str(rays), "--bounces", str(bounces), "--no",
                                "direct-punctual", "--spacing", str(args.volume_spacing), "--threads", str(args.threads),
-                               "--out", os.path.join(tmp, "volume.vdb"), "--json"]))
+                               "--out", os.path.join(tmp, "volume.vdb"), "--json"] + sharing(args, False)))
     per_probe, own = seed_rms(errors), seed_rms(noise)
     return {"rays": rays, "probe_relative_rmse": per_probe, "worst_probe_relative_rmse": max(per_probe),
             "probe_relative_rmse_against_own_converged": own, "worst_probe_against_own_converged": max(own),
             "seconds_per_probe": bake["seconds"]["trace_and_project"] / bake["probes"],
             "operators_seconds": bake["seconds"]["operators"], "volume_probes": bake["probes"]}
+
+
+def sharing(args, probe):
+    """The baker's flags for shared reflections. `baker probe` (`probe`) then shares with the
+    probes of a brick of the grid at --volume-spacing about each probe, as the volume bake timed
+    beside it does (which is given --spacing already)."""
+    if not args.share_reflections:
+        return []
+    return ["--share-reflections", str(args.share_reflections)] + (
+        ["--spacing", str(args.volume_spacing)] if probe else [])
 
 
 def cycles_row(args, scene, probes, reference, bounces, spp):
@@ -134,6 +147,8 @@ def main():
     ap.add_argument("--target", type=float, default=0.01)
     ap.add_argument("--volume-spacing", type=float, default=0.7)
     ap.add_argument("--converged-rays", type=int, default=1 << 20)
+    ap.add_argument("--share-reflections", type=float, default=0.0,
+                    help="the baker's --share-reflections SIZE (metres); its converged answer shares nothing")
     ap.add_argument("--correct-pixel-bias", action="store_true",
                     help="measure the baker against the reference less its panoramas' pixel bias on emitters "
                          "(scripts/reference_pixel_bias.py); Cycles, whose renders carry it too, against the reference")

@@ -42,11 +42,11 @@ def positions(flag, probes):
     return ["%s=%r,%r,%r" % ((flag,) + tuple(p)) for p in probes]
 
 
-def baker_axes(baker, scene, probes, rays, bounces, seed, threads=None):
+def baker_axes(baker, scene, probes, rays, bounces, seed, threads=None, extra=()):
     """`baker probe`'s six axis irradiances (RGB) at the probes, from its samples, without the
-    punctual lights seen directly (which no panorama holds)."""
+    punctual lights seen directly (which no panorama holds). `extra`: more of its flags."""
     command = [baker, "probe", scene, "--rays", str(rays), "--bounces", str(bounces), "--no", "direct-punctual",
-               "--seed", str(seed), "--json"] + (["--threads", str(threads)] if threads else [])
+               "--seed", str(seed), "--json"] + (["--threads", str(threads)] if threads else []) + list(extra)
     return [lower_keys(p["irradiance_from_samples"]) for p in json.loads(run(command + positions("--at", probes)))["probes"]]
 
 

@@ -3,6 +3,7 @@
 // it; single probes are traced as the grid's are.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <functional>
 
 #include "bake/BakeJob.h"
@@ -51,6 +52,11 @@ TEST(BakeJob, EveryBadValueIsRefusedNamingItsField) {
   EXPECT_EQ(refusedSetting([](BakeRequest& r) { r.basis = "sg-12", r.sgSharpness = -1.0; }), "sg_sharpness");
   EXPECT_EQ(refusedSetting([](BakeRequest& r) { r.nonNegative = true; }), "non_negative");  // sh-l2 changes sign
   EXPECT_EQ(refusedSetting([](BakeRequest& r) { r.basis = "ad-srbf", r.nonNegative = true; }), "");
+  EXPECT_EQ(refusedSetting([](BakeRequest& r) { r.sharedReflectionCell = -0.1; }), "share_reflections");
+  EXPECT_EQ(refusedSetting([](BakeRequest& r) { r.sharedReflectionCell = std::nan(""); }), "share_reflections");
+  EXPECT_EQ(refusedSetting([](BakeRequest& r) { r.sharedReflectionCell = 0.1; }), "");
+  EXPECT_EQ(refusedSetting([](BakeRequest& r) { r.sharedReflectionCell = 0.1, r.quality = "draft"; }),
+            "share_reflections");  // a preset's rounds follow each probe's own noise
   // A preset makes the ray count irrelevant.
   EXPECT_EQ(refusedSetting([](BakeRequest& r) { r.quality = "draft", r.rays = 0; }), "");
 }

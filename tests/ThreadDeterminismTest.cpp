@@ -14,11 +14,13 @@ namespace {
 // with a point light and a sky map added has every effect a bake simulates: bounces, an
 // emissive panel, a punctual light seen by the probes and by every bounce, a sky with a bright
 // spot through the open side, probes in walls, and every kind of direct-view sample and aim;
-// with a fixed lattice and with adaptive rounds, where probes stop at different rounds.
-class ThreadDeterminism : public ::testing::TestWithParam<bool> {};
+// with a fixed lattice, with adaptive rounds, where probes stop at different rounds, and with a
+// fixed lattice whose probes share their reflections, summed in the order of the probes.
+enum class Lattice { Fixed, Adaptive, Shared };
+class ThreadDeterminism : public ::testing::TestWithParam<Lattice> {};
 
 TEST_P(ThreadDeterminism, EveryThreadCountBakesTheSameVolume) {
-  const bool adaptive = GetParam();
+  const bool adaptive = GetParam() == Lattice::Adaptive;
   Scene scene = loadGltf(test::sourcePath("data/default_room/default_room.gltf"));
   PunctualLight lamp;
   lamp.position = scene.bounds.center();
@@ -36,6 +38,7 @@ TEST_P(ThreadDeterminism, EveryThreadCountBakesTheSameVolume) {
     settings.rays = 16;
     settings.convergence = {0.05, 1, 3};
   }
+  if (GetParam() == Lattice::Shared) settings.sharedReflectionCell = 0.2f;
   const auto bakeWith = [&](int threads, BakeStats* stats) {
     return test::onThreads(threads, [&] { return bakeVolume(scene, tracer, *basis, grid, settings, stats); });
   };
@@ -58,6 +61,8 @@ TEST_P(ThreadDeterminism, EveryThreadCountBakesTheSameVolume) {
     const Volume other = bakeWith(threads, &stats);
     EXPECT_EQ(other.coefficients, one.coefficients) << threads << " threads";
     EXPECT_EQ(other.visibility, one.visibility) << threads << " threads";
+    EXPECT_EQ(other.skyDirect, one.skyDirect) << threads << " threads";
+    EXPECT_EQ(other.skyBounced, one.skyBounced) << threads << " threads";
     EXPECT_EQ(other.states, one.states) << threads << " threads";
     ASSERT_EQ(other.offsets.size(), one.offsets.size());
     for (std::size_t p = 0; p < one.offsets.size(); ++p)
@@ -72,8 +77,10 @@ TEST_P(ThreadDeterminism, EveryThreadCountBakesTheSameVolume) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Lattices, ThreadDeterminism, ::testing::Values(false, true),
-                         [](const ::testing::TestParamInfo<bool>& info) { return info.param ? "adaptive" : "fixed"; });
+INSTANTIATE_TEST_SUITE_P(Lattices, ThreadDeterminism, ::testing::Values(Lattice::Fixed, Lattice::Adaptive, Lattice::Shared),
+                         [](const ::testing::TestParamInfo<Lattice>& info) {
+                           return info.param == Lattice::Fixed ? "fixed" : info.param == Lattice::Adaptive ? "adaptive" : "shared";
+                         });
 
 }  // namespace
 }  // namespace baker
