@@ -32,6 +32,16 @@ BakedProbes bakeTasks(const Scene& scene, const RayTracer& tracer, const Basis& 
   return baked;
 }
 
+std::vector<ProbeTask> neighbourTasks(const RayTracer& tracer, const TransportSettings& transport, double spacing,
+                                      const std::vector<Eigen::Vector3f>& neighbours, std::uint64_t firstId,
+                                      std::int64_t* validityRays) {
+  const std::vector<ProbePlacement> placed = placeProbes(tracer, transport, spacing, neighbours, validityRays);
+  std::vector<ProbeTask> tasks;
+  for (std::size_t i = 0; i < neighbours.size(); ++i)
+    if (placed[i].state != ProbeState::Invalid) tasks.push_back({neighbours[i] + placed[i].offset, firstId + i, 0});
+  return tasks;
+}
+
 BakedProbes bakeProbesAt(const Scene& scene, const RayTracer& tracer, const Basis& basis, const BakeSettings& settings,
                          double spacing, const std::vector<Eigen::Vector3f>& positions,
                          const std::vector<Eigen::Vector3f>& neighbours) {
@@ -39,10 +49,9 @@ BakedProbes bakeProbesAt(const Scene& scene, const RayTracer& tracer, const Basi
   std::vector<ProbePlacement> placements = placeProbes(tracer, settings.transport, spacing, positions, &validityRays);
   std::vector<ProbeTask> tasks;
   for (std::size_t i = 0; i < positions.size(); ++i) tasks.push_back({positions[i] + placements[i].offset, i, 0});
-  const std::vector<ProbePlacement> around = placeProbes(tracer, settings.transport, spacing, neighbours, &validityRays);
-  for (std::size_t i = 0; i < neighbours.size(); ++i)
-    if (around[i].state != ProbeState::Invalid)
-      tasks.push_back({neighbours[i] + around[i].offset, positions.size() + i, 0});
+  for (const ProbeTask& task : neighbourTasks(tracer, settings.transport, spacing, neighbours, positions.size(),
+                                              &validityRays))
+    tasks.push_back(task);
   BakedProbes baked = bakeTasks(scene, tracer, basis, settings, std::move(tasks));
   const std::size_t n = positions.size();  // the neighbours' results are not returned
   baked.tasks.resize(n);

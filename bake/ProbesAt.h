@@ -28,6 +28,12 @@ struct BakedProbes {
 std::vector<ProbePlacement> placeProbes(const RayTracer& tracer, const TransportSettings& transport, double spacing,
                                         const std::vector<Eigen::Vector3f>& positions, std::int64_t* validityRays);
 
+// Tasks for probes traced beside others that share their reflections: placed as placeProbes
+// does, those inside geometry left out, ids from firstId on, rotation 0.
+std::vector<ProbeTask> neighbourTasks(const RayTracer& tracer, const TransportSettings& transport, double spacing,
+                                      const std::vector<Eigen::Vector3f>& neighbours, std::uint64_t firstId,
+                                      std::int64_t* validityRays);
+
 // Bakes each task (rotation, id and position as given) and keeps its samples. NumericalError
 // when a coefficient is not finite.
 BakedProbes bakeTasks(const Scene& scene, const RayTracer& tracer, const Basis& basis, const BakeSettings& settings,

@@ -108,10 +108,8 @@ std::vector<std::vector<Eigen::Vector3f>> bakeAxes(const Scene& scene, const Ray
     const ProbeGrid grid = makeProbeGrid(scene.bounds, 1.0, 1000);
     std::vector<Eigen::Vector3f> positions;
     for (std::int64_t p = 0; p < grid.probeCount(); ++p) positions.push_back(grid.position(p).cast<float>());
-    const std::vector<ProbePlacement> placed = placeProbes(tracer, settings.transport, grid.spacing, positions, nullptr);
-    for (std::size_t p = 0; p < positions.size(); ++p)
-      if (placed[p].state != ProbeState::Invalid)
-        tasks.push_back({positions[p] + placed[p].offset, std::uint64_t(tasks.size()), 0});
+    for (const ProbeTask& task : neighbourTasks(tracer, settings.transport, grid.spacing, positions, tasks.size(), nullptr))
+      tasks.push_back(task);
   }
   std::vector<float> coefficients(tasks.size() * baker.coefficientsPerProbe());
   std::vector<float> visibility(tasks.size() * baker.visibilityPerProbe());
